@@ -1,0 +1,147 @@
+// Leaf particles from the tree's vertices, then their normalised distances, labels and fades.
+#include "generators/leaves.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <numeric>
+
+#include "generators/tree_mesh.h"
+#include "shading/curves.h"
+
+namespace pleinair {
+
+namespace {
+
+bool vertex_eligible(const Limb& L, int ring, const LeafParams& lp) {
+    const int last = static_cast<int>(L.rings.size()) - 1;
+    if (L.level == 0) return ring >= lp.lowest_step_trunk && ring <= last - lp.trim_top_steps_trunk;
+    // Ring 0 of a branch is its parent's face: those vertices belong to the parent.
+    return ring >= std::max(1, lp.steps_from_center) && ring <= last - lp.steps_from_tip;
+}
+
+// A stride coprime with n near n / golden ratio: (i * stride) mod n is a permutation that puts
+// neighbouring particles far apart in label space, so adjacent strokes get unrelated noise.
+uint64_t label_stride(uint64_t n) {
+    if (n <= 2) return 1;
+    uint64_t s = static_cast<uint64_t>(static_cast<double>(n) * 0.6180339887498949);
+    while (std::gcd(s, n) != 1) ++s;
+    return s;
+}
+
+}  // namespace
+
+LeafParticles emit_leaves(const TreeMesh& tm, const TreeParams& params, uint64_t seed,
+                          uint32_t tree_id, glm::dvec3& center) {
+    const LeafParams& lp = params.leaves;
+    LeafParticles out;
+    std::vector<glm::dvec3> pos;  // double until the end: distances are taken locally
+    std::vector<double> along;
+    std::vector<double> g_start, g_len;  // the fade's gaussian draws, made while growing
+
+    // First the decisions, so every array is allocated once.
+    struct Emitter {
+        const Limb* limb;
+        int ring, corner;
+        uint64_t key;
+    };
+    std::vector<Emitter> emitters;
+    for (const Limb& L : tm.limbs) {
+        for (int r = 0; r < static_cast<int>(L.rings.size()); ++r) {
+            if (!vertex_eligible(L, r, lp)) continue;
+            for (int j = 0; j < 4; ++j) {
+                const uint64_t key =
+                    hash_keys(L.key, static_cast<uint64_t>(r), static_cast<uint64_t>(j));
+                Rng decide = make_rng(seed, Purpose::kLeafDecide, key);
+                if (rand1(decide) < lp.probability) emitters.push_back({&L, r, j, key});
+            }
+        }
+    }
+    const size_t most = emitters.size() * static_cast<size_t>(lp.branching_steps);
+    pos.reserve(most);
+    along.reserve(most);
+    out.normal.reserve(most);
+    g_start.reserve(most);
+    g_len.reserve(most);
+
+    for (const Emitter& e : emitters) {
+        const Limb& L = *e.limb;
+        Rng rng = make_rng(seed, Purpose::kLeafGrow, e.key);
+        const glm::dvec3 p0 = tm.point(L.rings[e.ring][e.corner]);
+        const glm::dvec3 outward =
+            safe_normalize(p0 - L.centers[e.ring], any_perpendicular(L.direction));
+        // Start direction: uniform over the cone of aperture branch_angle about the vertex's
+        // outward normal.
+        const double half = 0.5 * radians(sample(lp.branch_angle, rng));
+        const double cos_t = 1.0 - rand1(rng) * (1.0 - std::cos(half));
+        const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
+        glm::dvec3 dir = turn_direction(outward, cos_t, sin_t, rand1(rng));
+
+        glm::dvec3 p = p0;
+        double dist = 0;
+        bool grounded = false;
+        for (int k = 0; k < lp.branching_steps; ++k) {
+            const double wob = sample(lp.branch_dir_wobble, rng);
+            const double wob_az = rand1(rng);
+            const double step = sample(lp.branching_distance, rng) * tm.unit;
+            const double gs = rand_gaussian(rng), gl = rand_gaussian(rng);
+            if (grounded) continue;  // keep drawing: the stream's position is fixed
+            dir = apply_tropism(wobble_direction(dir, wob, wob_az), lp.tropism);
+            const glm::dvec3 next = p + dir * step;
+            if (next.y < 0) {  // leaves never go under the ground
+                grounded = true;
+                continue;
+            }
+            p = next;
+            dist += step;
+            pos.push_back(p);
+            along.push_back(dist);
+            out.normal.push_back(glm::vec3(dir));
+            g_start.push_back(gs);
+            g_len.push_back(gl);
+        }
+    }
+
+    const size_t n = pos.size();
+    // Centre locator: canopy centroid (sum in double) plus the preset's offset.
+    glm::dvec3 sum(0);
+    for (const auto& p : pos) sum += p;
+    const Limb& trunk = tm.limbs.front();
+    center = (n > 0 ? sum / static_cast<double>(n) : trunk.centers.back()) +
+             params.center_offset * params.unit;
+
+    double max_along = 0, max_center = 0;
+    std::vector<double> from_center(n);
+    for (size_t i = 0; i < n; ++i) {
+        from_center[i] = glm::length(pos[i] - center);
+        max_along = std::max(max_along, along[i]);
+        max_center = std::max(max_center, from_center[i]);
+    }
+    const FadeParams& fp = lp.fade;
+    const uint64_t stride = label_stride(n);
+    out.position.resize(n);
+    out.branch_distance.resize(n);
+    out.center_distance.resize(n);
+    out.label.resize(n);
+    out.tree_id.assign(n, tree_id);
+    out.fade_begin.resize(n);
+    out.fade_end.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        out.position[i] = glm::vec3(pos[i]);
+        out.branch_distance[i] = max_along > 0 ? static_cast<float>(along[i] / max_along) : 0.0f;
+        out.center_distance[i] =
+            max_center > 0 ? static_cast<float>(std::min(1.0, from_center[i] / max_center)) : 0.0f;
+        out.label[i] = static_cast<float>((static_cast<double>((i * stride) % n) + 0.5) /
+                                          static_cast<double>(n));
+        // Outer leaves (centre distance 1) start fading at the near circle, inner ones last.
+        double start = bias(1.0f - out.center_distance[i], static_cast<float>(fp.threshold_bias));
+        start = std::clamp(start + fp.threshold_var * g_start[i], 0.0, 1.0);
+        double len = std::max(fp.length_min, std::clamp(fp.length.base + fp.length.var * g_len[i],
+                                                        fp.length.lo, fp.length.hi));
+        out.fade_begin[i] = static_cast<float>(start);
+        out.fade_end[i] = static_cast<float>(start + len);
+    }
+    return out;
+}
+
+}  // namespace pleinair

@@ -1,0 +1,18 @@
+// Catmull-Clark subdivision of closed quad meshes on flat arrays.
+//
+// OpenMesh's CatmullClarkT gives the same surface but works through its general half-edge
+// kernel and per-element properties; on a tree's control mesh it is several times slower than
+// this flat version (tests/bench, BM_Subdivide*), which generation uses. Tests check that both
+// give the same vertices.
+#pragma once
+
+#include "generators/quad_mesh.h"
+
+namespace pleinair {
+
+// `levels` rounds of Catmull-Clark. The input must be closed (check_mesh().closed); throws
+// std::invalid_argument otherwise. Vertex order: old vertices, then edge points, then face
+// points, so level-0 vertices keep their indices.
+QuadMesh catmull_clark(const QuadMesh& mesh, int levels);
+
+}  // namespace pleinair

@@ -1,0 +1,62 @@
+// A whole generated tree: control, render and low-detail meshes, leaf particles, skeleton and
+// centre locator, built from a preset and a seed by one pure function.
+#pragma once
+
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "generators/leaves.h"
+#include "generators/quad_mesh.h"
+#include "generators/tree_params.h"
+
+namespace pleinair {
+
+// One limb of the skeleton, for the stages after generation (leaf LOD, bark strokes).
+struct BranchInfo {
+    uint32_t id = 0;        // index in Tree::branches; 0 is the trunk
+    int level = 0;          // 0 trunk, 1 branch, 2 twig
+    int parent = -1;        // id of the parent, -1 for the trunk
+    glm::vec3 start{0.0f};  // centre of the base ring (tree-local)
+    glm::vec3 end{0.0f};    // centre of the tip ring
+    float length = 0;       // along the skeleton
+    std::vector<glm::vec3> ring_centers;
+    std::vector<float> ring_radii;  // non-increasing from base to tip
+};
+
+struct TreeOptions {
+    uint32_t tree_id = 0;        // stored in every particle; seeds the painter's tint
+    glm::dvec3 origin{0, 0, 0};  // where the tree stands; geometry itself is tree-local
+    bool lod = true;             // build the low-detail mesh
+};
+
+struct Tree {
+    uint64_t seed = 0;
+    uint32_t id = 0;
+    glm::dvec3 origin{0, 0, 0};  // add to tree-local positions for world space (in double)
+    QuadMesh control;            // trunk and branches as grown by extrusion
+    QuadMesh render;             // control after Catmull-Clark
+    QuadMesh lod;                // trunk and first-level branches, fewer subdivision levels
+    LeafParticles leaves;
+    std::vector<BranchInfo> branches;
+    glm::vec3 center{0.0f};  // centre locator, tree-local
+};
+
+class InvalidParams : public std::invalid_argument {
+  public:
+    explicit InvalidParams(std::vector<std::string> problems);
+    std::vector<std::string> problems;
+};
+
+// Pure: the same params, seed and options give the same Tree, bit for bit. Throws
+// InvalidParams if validate(params) finds a problem.
+Tree generate_tree(const TreeParams& params, uint64_t seed, const TreeOptions& options = {});
+
+// The stages, for benchmarks and tests; generate_tree runs them in this order.
+struct TreeMesh;
+void grow_skeleton(TreeMesh& tm, const TreeParams& params, uint64_t seed,
+                   QuadMesh* lod_control = nullptr);
+
+}  // namespace pleinair

@@ -1,0 +1,200 @@
+// Face extrusion and limb growth on the tree's OpenMesh control mesh.
+#include "generators/tree_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+
+namespace pleinair {
+
+using OpenMesh::FaceHandle;
+using OpenMesh::VertexHandle;
+
+namespace {
+
+glm::dvec3 to_glm(const OpenMesh::Vec3d& p) { return {p[0], p[1], p[2]}; }
+OpenMesh::Vec3d to_om(const glm::dvec3& p) { return {p.x, p.y, p.z}; }
+
+// Rotation taking unit vector a onto unit vector b, applied to v.
+glm::dvec3 rotate_between(const glm::dvec3& v, const glm::dvec3& a, const glm::dvec3& b) {
+    glm::dvec3 axis = glm::cross(a, b);
+    double s = glm::length(axis), c = glm::dot(a, b);
+    if (s < 1e-12) {
+        if (c > 0) return v;
+        return rotate(v, any_perpendicular(a), M_PI);
+    }
+    return rotate(v, axis / s, std::atan2(s, c));
+}
+
+}  // namespace
+
+double radians(double degrees) { return degrees * (M_PI / 180.0); }
+
+glm::dvec3 rotate(const glm::dvec3& v, const glm::dvec3& k, double angle) {
+    double c = std::cos(angle), s = std::sin(angle);
+    return v * c + glm::cross(k, v) * s + k * (glm::dot(k, v) * (1.0 - c));
+}
+
+glm::dvec3 any_perpendicular(const glm::dvec3& v) { return orthonormal_basis(v).first; }
+
+std::pair<glm::dvec3, glm::dvec3> orthonormal_basis(const glm::dvec3& n) {
+    // Duff et al., "Building an Orthonormal Basis, Revisited" (JCGT 2017): branch-free, no
+    // square root, continuous except across n.z = 0's sign flip.
+    const double sign = std::copysign(1.0, n.z);
+    const double a = -1.0 / (sign + n.z);
+    const double b = n.x * n.y * a;
+    return {{1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x}, {b, sign + n.y * n.y * a, -n.y}};
+}
+
+glm::dvec3 safe_normalize(const glm::dvec3& v, const glm::dvec3& fallback) {
+    double len = glm::length(v);
+    return (len > 1e-300 && std::isfinite(len)) ? v / len : fallback;
+}
+
+glm::dvec3 turn_direction(const glm::dvec3& v, double cos_t, double sin_t, double turns) {
+    // Rotating v by t about the unit axis a = cos(az) u + sin(az) w (a perpendicular to v)
+    // gives v cos t + (a x v) sin t, and a x v = sin(az) u - cos(az) w. Single-precision trig:
+    // a direction needs no more, and it is several times cheaper in the leaf loop.
+    const auto [u, w] = orthonormal_basis(v);
+    const float az = static_cast<float>(2.0 * M_PI * turns);
+    const double sa = std::sin(az), ca = std::cos(az);
+    return safe_normalize(v * cos_t + (sa * u - ca * w) * sin_t, v);
+}
+
+glm::dvec3 wobble_direction(const glm::dvec3& v, double degrees, double turns) {
+    const float t = static_cast<float>(radians(degrees));
+    return turn_direction(v, std::cos(t), std::sin(t), turns);
+}
+
+glm::dvec3 apply_tropism(const glm::dvec3& heading, const Tropism& t) {
+    if (t.strength <= 0) return heading;
+    glm::dvec3 d = safe_normalize(t.direction, glm::dvec3(0));
+    return safe_normalize(heading + t.strength * d, heading);
+}
+
+TreeMesh::TreeMesh() {
+    // Room for a large tree up front: growing OpenMesh's arrays (and their status properties)
+    // step by step showed in profiles.
+    mesh.reserve(2048, 4096, 2048);
+    mesh.request_vertex_status();
+    mesh.request_face_status();
+    mesh.request_edge_status();
+    mesh.request_halfedge_status();
+}
+
+glm::dvec3 TreeMesh::point(VertexHandle v) const { return to_glm(mesh.point(v)); }
+
+Ring extrude_face(TreeMesh& tm, FaceHandle face, const Ring& a,
+                  const std::array<glm::dvec3, 4>& pos, std::array<FaceHandle, 4>& sides) {
+    auto& m = tm.mesh;
+    m.delete_face(face, false);
+    Ring b;
+    for (int j = 0; j < 4; ++j) b[j] = m.add_vertex(to_om(pos[j]));
+    // The deleted face's half-edges a_j -> a_j+1 are free now; each side quad takes one, so the
+    // orientation carries over and the surface stays closed.
+    for (int j = 0; j < 4; ++j) {
+        int k = (j + 1) & 3;
+        sides[j] = m.add_face(a[j], a[k], b[k], b[j]);
+    }
+    m.add_face(b[0], b[1], b[2], b[3]);
+    return b;
+}
+
+void grow_limb(TreeMesh& tm, int limb_index, const StepParams& sp, const StopRule& stop, Rng& rng) {
+    for (int step = 0; step < stop.max_steps; ++step) {
+        // Every step draws the same numbers in the same order, used or not.
+        const double wobble = sample(*sp.wobble, rng);
+        const double azimuth = rand1(rng);
+        const double len = sample(*sp.extrude_length, rng) * tm.unit;
+        const double twist = sample(*sp.twist, rng);
+        const double taper = sample(*sp.taper, rng);
+
+        Limb& L = tm.limbs[limb_index];
+        if (L.length >= stop.max_length || L.centers.back().y >= stop.max_height) return;
+        const Ring ring = L.rings.back();
+        const glm::dvec3 c = L.centers.back();
+        const double r = L.radii.back();
+
+        glm::dvec3 heading = wobble_direction(L.heading, wobble, azimuth);
+        heading = apply_tropism(heading, sp.tropism);
+
+        // Limit the turn so the inner side of the new segment cannot fold back through the
+        // previous ring: tan(turn) * r < len.
+        glm::dvec3 dir = heading;
+        double angle = std::acos(std::clamp(glm::dot(L.direction, heading), -1.0, 1.0));
+        double max_turn = std::atan2(0.8 * len, r);
+        if (angle > max_turn) {
+            glm::dvec3 axis = glm::cross(L.direction, heading);
+            double s = glm::length(axis);
+            axis = s > 1e-12 ? axis / s : any_perpendicular(L.direction);
+            dir = glm::normalize(rotate(L.direction, axis, max_turn));
+        }
+
+        double new_r = taper * r;
+        bool last = false;
+        if (new_r <= tm.min_radius) {
+            new_r = std::min(tm.min_radius, r);
+            last = true;
+        }
+
+        // The face turns by the full twist, but new vertex j is the image of old vertex j - k,
+        // k the nearest whole number of quarter turns: it lands within 45 degrees of old vertex
+        // j, which it joins. Side quads then never cross the axis, even at 180 degrees a step.
+        const long k = std::lround(twist / 90.0);
+        const double theta = radians(twist);
+        const glm::dvec3 c_new = c + dir * len;
+        std::array<glm::dvec3, 4> pos;
+        for (int j = 0; j < 4; ++j) {
+            int src = static_cast<int>(((j - k) % 4 + 4) % 4);
+            glm::dvec3 v = tm.point(ring[src]) - c;
+            v = rotate_between(v, L.direction, dir);
+            v = rotate(v, dir, theta);
+            v -= dir * glm::dot(v, dir);  // keep the new face planar, perpendicular to dir
+            pos[j] = c_new + v * (new_r / r);
+        }
+        // Growth never enters the ground (y = 0 in the tree's frame): the limb stops instead.
+        if (std::min({pos[0].y, pos[1].y, pos[2].y, pos[3].y}) < 0) return;
+
+        // The top face is the one whose boundary runs ring[0] -> ring[1].
+        FaceHandle top = tm.mesh.face_handle(tm.mesh.find_halfedge(ring[0], ring[1]));
+        std::array<FaceHandle, 4> sides;
+        Ring b = extrude_face(tm, top, ring, pos, sides);
+
+        glm::dvec3 centroid(0);
+        for (const auto& p : pos) centroid += p * 0.25;
+        double radius = 0;
+        for (const auto& p : pos) radius += 0.25 * glm::length(p - centroid);
+
+        L.rings.push_back(b);
+        L.sides.insert(L.sides.end(), sides.begin(), sides.end());
+        L.centers.push_back(centroid);
+        L.radii.push_back(std::min(radius, r));
+        L.direction = dir;
+        L.heading = heading;
+        L.length += len;
+        if (last) return;
+    }
+}
+
+QuadMesh to_quad_mesh(const TreeMesh& tm) {
+    const auto& m = tm.mesh;
+    QuadMesh q;
+    q.positions.reserve(m.n_vertices());
+    for (size_t i = 0; i < m.n_vertices(); ++i)
+        q.positions.push_back(glm::vec3(tm.point(VertexHandle(static_cast<int>(i)))));
+    q.quads.reserve(m.n_faces());
+    for (size_t i = 0; i < m.n_faces(); ++i) {
+        FaceHandle f(static_cast<int>(i));
+        if (m.status(f).deleted()) continue;
+        glm::uvec4 quad;
+        auto h = m.halfedge_handle(f);
+        for (int c = 0; c < 4; ++c) {
+            quad[c] = static_cast<uint32_t>(m.from_vertex_handle(h).idx());
+            h = m.next_halfedge_handle(h);
+        }
+        q.quads.push_back(quad);
+    }
+    return q;
+}
+
+}  // namespace pleinair

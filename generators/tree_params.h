@@ -1,0 +1,257 @@
+// Tree presets as plain parameter structs with in-class defaults, and the one table that names,
+// bounds and documents every key (read by the preset loader, the saver, the validator and the
+// reference in the README).
+#pragma once
+
+#include <glm/vec3.hpp>
+#include <string>
+#include <vector>
+
+#include "generators/rng.h"
+
+namespace pleinair {
+
+// A number drawn per tree or per step: base + var * N(0, 1), clamped to [lo, hi]. `var` is the
+// gaussian's standard deviation, in the same unit as `base`; 0 means no variation. lo/hi are the
+// key's valid range, fixed by the declaration below, never read from a preset.
+struct Param {
+    double base = 0;
+    double var = 0;
+    double lo = 0;
+    double hi = 1;
+};
+
+// Always consumes the same number of draws, so a stream's later numbers do not depend on
+// whether this parameter varies.
+inline double sample(const Param& p, Rng& rng) {
+    double g = rand_gaussian(rng);
+    double x = p.base + p.var * g;
+    return x < p.lo ? p.lo : (x > p.hi ? p.hi : x);
+}
+
+// A constant pull on growth: each step's heading becomes normalize(heading + strength * direction).
+// Gravity droops willows; a small upward pull keeps poplars fastigiate.
+struct Tropism {
+    glm::dvec3 direction{0, -1, 0};
+    double strength = 0;
+};
+
+struct TrunkParams {
+    Param initial_size{0.8, 0.05, 1e-3, 1e3};
+    Param max_height{10, 1, 1e-3, 1e5};
+    int max_steps = 12;
+    Param extrude_length{1.0, 0.1, 1e-3, 1e3};
+    Param twist{0, 4, -360, 360};
+    Param taper{0.93, 0.02, 0, 1};
+    Param wobble{3, 1.5, 0, 90};
+    Param lean{0, 0, 0, 80};
+};
+
+// One level of branches; `branches` grow from the trunk, `twigs` (the thesis has no second
+// level) from the branches.
+struct BranchParams {
+    bool enabled = true;
+    double min_height = 0.35;
+    double max_height = 0.95;
+    double probability = 0.35;
+    Param angle{55, 10, 0, 180};
+    Param max_length{5, 1, 1e-3, 1e5};
+    int max_steps = 8;
+    Param first_length{0.08, 0.01, 1e-4, 1e3};
+    Param first_taper{0.75, 0.05, 0.01, 1};
+    Param extrude_length{0.8, 0.1, 1e-3, 1e3};
+    Param twist{0, 5, -360, 360};
+    Param taper{0.85, 0.03, 0, 1};
+    Param wobble{8, 4, 0, 90};
+    Tropism tropism;
+};
+
+// Level-of-detail fade thresholds (thesis IV.6), in the tree's distance value: 0 at the near
+// circle, 1 at the far circle.
+struct FadeParams {
+    double threshold_bias = 0.5;
+    double threshold_var = 0.05;
+    Param length{0.3, 0.05, 0, 10};
+    double length_min = 0.15;
+};
+
+struct LeafParams {
+    int lowest_step_trunk = 4;
+    int trim_top_steps_trunk = 0;
+    int steps_from_center = 1;
+    int steps_from_tip = 0;
+    double probability = 0.75;
+    Param branch_angle{140, 10, 0, 180};
+    Param branching_distance{0.35, 0.05, 1e-4, 1e3};
+    int branching_steps = 7;
+    Param branch_dir_wobble{25, 8, 0, 180};
+    Tropism tropism;
+    FadeParams fade;
+};
+
+struct TreeParams {
+    std::string name = "tree";
+    std::string description;
+    double unit = 1;
+    int subdivision_levels = 2;
+    glm::dvec3 center_offset{0, 0, 0};
+    TrunkParams trunk;
+    BranchParams branches;
+    BranchParams twigs = default_twigs();
+    LeafParams leaves;
+    int lod_subdivision_levels = 1;
+
+    static BranchParams default_twigs();
+};
+
+struct Range {
+    double lo;
+    double hi;
+};
+
+// The key table. V is a visitor with these members (see pipeline/json_params.cpp for readers
+// and writers, tree_params.cpp for the validator):
+//   object(key, doc, fn)                  nested object; fn() visits its keys
+//   param(key, Param&, unit, doc)         a gaussian-varied number {"base": b, "var": v} or b
+//   number(key, double&, Range, unit, doc)
+//   integer(key, int&, Range, doc)
+//   boolean(key, bool&, doc)
+//   vector(key, dvec3&, unit, doc)
+//   text(key, string&, doc)
+// P is TreeParams or const TreeParams.
+template <class P, class V>
+void visit_branch_params(P& b, V& v) {
+    v.boolean("enabled", b.enabled, "Grow this level at all.");
+    v.number("min_height", b.min_height, Range{0, 1}, "fraction",
+             "Lowest eligible point on the parent, as a fraction of its length (for the trunk: "
+             "of its height).");
+    v.number("max_height", b.max_height, Range{0, 1}, "fraction",
+             "Highest eligible point on the parent, same measure as min_height.");
+    v.number("probability", b.probability, Range{0, 1}, "",
+             "Chance that an eligible side face of the parent grows a branch.");
+    v.param("angle", b.angle, "deg",
+            "Angle between the parent's axis and the branch's initial heading; 90 is "
+            "perpendicular. Per branch.");
+    v.param("max_length", b.max_length, "units", "Length at which the branch stops. Per branch.");
+    v.integer("max_steps", b.max_steps, Range{1, 256},
+              "Most extrusions per branch, the short first one included.");
+    v.param("first_length", b.first_length, "units",
+            "Length of the short first extrusion whose face is forced square and planar, so the "
+            "subdivided joint stays round (thesis Fig. 12). Per branch.");
+    v.param("first_taper", b.first_taper, "",
+            "Half-diagonal of that square as a fraction of the largest square the parent face "
+            "holds (and of the parent's radius). Per branch.");
+    v.param("extrude_length", b.extrude_length, "units",
+            "Length of each later extrusion. Per step.");
+    v.param("twist", b.twist, "deg", "Rotation of each new face about the growth axis. Per step.");
+    v.param("taper", b.taper, "",
+            "Scale of each new face relative to the previous one; 1 keeps the radius, 0 ends the "
+            "branch in a point (clamped to a minimum radius). Per step.");
+    v.param("wobble", b.wobble, "deg",
+            "Random turn of the heading at each step, about a random axis. Per step.");
+    v.object("tropism", "A constant pull on the heading (gravity, light).", [&] {
+        v.vector("direction", b.tropism.direction, "",
+                 "Direction of the pull; normalised when used ([0, -1, 0] is gravity).");
+        v.number("strength", b.tropism.strength, Range{0, 10}, "",
+                 "Weight of the pull added to the heading at each step.");
+    });
+}
+
+template <class P, class V>
+void visit_tree_params(P& p, V& v) {
+    v.text("name", p.name, "Short name of the family.");
+    v.text("description", p.description, "One or two lines on what the family looks like.");
+    v.number("unit", p.unit, Range{1e-6, 1e6}, "world",
+             "Size of one tree unit in world units; every length of the preset is in tree units.");
+    v.integer("subdivision_levels", p.subdivision_levels, Range{0, 4},
+              "Catmull-Clark levels from the control mesh to the render mesh.");
+    v.vector("center_offset", p.center_offset, "units",
+             "Offset of the centre locator from the canopy's centroid (the centroid of the leaf "
+             "particles); moves where leaves count as inner (darker) and outer (lighter, first to "
+             "fade).");
+    v.object("trunk", "The trunk: a cube extruded upward from its top face (thesis IV.3).", [&] {
+        auto& t = p.trunk;
+        v.param("initial_size", t.initial_size, "units", "Edge of the starting cube. Per tree.");
+        v.param("max_height", t.max_height, "units",
+                "Height at which the trunk stops growing. Per tree.");
+        v.integer("max_steps", t.max_steps, Range{0, 256},
+                  "Most extrusions of the top face after the cube.");
+        v.param("extrude_length", t.extrude_length, "units", "Length of each extrusion. Per step.");
+        v.param("twist", t.twist, "deg",
+                "Rotation of each new face about the growth axis. Per step.");
+        v.param("taper", t.taper, "",
+                "Scale of each new face relative to the previous one; 1 keeps the radius, 0 "
+                "collapses the face (clamped to a minimum radius, and the trunk stops). Per step.");
+        v.param("wobble", t.wobble, "deg",
+                "Random turn of the growth direction at each step. Per step.");
+        v.param("lean", t.lean, "deg",
+                "Tilt of the trunk's heading from vertical, toward a random azimuth. Per tree.");
+    });
+    v.object("branches", "First level of branches, grown from the trunk's side faces.",
+             [&] { visit_branch_params(p.branches, v); });
+    v.object("twigs", "Optional second level, grown from the branches' side faces.",
+             [&] { visit_branch_params(p.twigs, v); });
+    v.object(
+        "leaves",
+        "Leaf particles emitted as implied branches from mesh vertices (thesis "
+        "IV.3, Fig. 13 and 14).",
+        [&] {
+            auto& l = p.leaves;
+            v.integer("lowest_step_trunk", l.lowest_step_trunk, Range{0, 1024},
+                      "Trunk rings below this one (0 is the ground) emit no leaves.");
+            v.integer("trim_top_steps_trunk", l.trim_top_steps_trunk, Range{0, 1024},
+                      "This many rings at the top of the trunk emit no leaves.");
+            v.integer("steps_from_center", l.steps_from_center, Range{0, 1024},
+                      "Branch rings closer than this to the branch's base emit no leaves.");
+            v.integer("steps_from_tip", l.steps_from_tip, Range{0, 1024},
+                      "This many rings at a branch's tip emit no leaves.");
+            v.number("probability", l.probability, Range{0, 1}, "",
+                     "Chance that an eligible vertex emits an implied branch of leaves.");
+            v.param("branch_angle", l.branch_angle, "deg",
+                    "Aperture of the cone around the vertex's outward normal in which the implied "
+                    "branch starts. Per implied branch.");
+            v.param("branching_distance", l.branching_distance, "units",
+                    "Distance from one particle to the next along its normal. Per particle.");
+            v.integer("branching_steps", l.branching_steps, Range{1, 64},
+                      "Particles per implied branch.");
+            v.param("branch_dir_wobble", l.branch_dir_wobble, "deg",
+                    "Random turn of the direction before each particle. Per particle.");
+            v.object("tropism", "A constant pull on implied branches (hanging willow strands).",
+                     [&] {
+                         v.vector("direction", l.tropism.direction, "",
+                                  "Direction of the pull; normalised.");
+                         v.number("strength", l.tropism.strength, Range{0, 10}, "",
+                                  "Weight of the pull added before each particle.");
+                     });
+            v.object(
+                "fade",
+                "Level-of-detail fade thresholds (thesis IV.6), in the tree's distance "
+                "value (0 at the near circle, 1 at the far one). Leaves farther from the "
+                "centre fade first.",
+                [&] {
+                    auto& f = l.fade;
+                    v.number(
+                        "threshold_bias", f.threshold_bias, Range{0.001, 0.999}, "",
+                        "Bias applied to (1 - distance from centre) to place where a leaf starts "
+                        "fading; below 0.5 every leaf fades sooner.");
+                    v.number("threshold_var", f.threshold_var, Range{0, 1}, "",
+                             "Gaussian standard deviation added to each leaf's start.");
+                    v.param("length", f.length, "",
+                            "Span of distance values over which a leaf fades out. Per leaf.");
+                    v.number("length_min", f.length_min, Range{0, 10}, "",
+                             "Smallest span of a fade.");
+                });
+        });
+    v.object("lod",
+             "The low-detail model (the thesis's LOD button): trunk and first-level "
+             "branches only.",
+             [&] {
+                 v.integer("subdivision_levels", p.lod_subdivision_levels, Range{0, 4},
+                           "Catmull-Clark levels of the low-detail mesh.");
+             });
+}
+
+// Every problem with the values, one line each: "/trunk/taper/base: must be in [0, 1], got 1.7".
+std::vector<std::string> validate(const TreeParams& params);
+
+}  // namespace pleinair

@@ -1,0 +1,131 @@
+// The tree, family and presets commands.
+#include "pipeline/cli/commands.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <glm/common.hpp>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "pipeline/error.h"
+#include "pipeline/family.h"
+#include "pipeline/json_params.h"
+#include "pipeline/presets.h"
+#include "pipeline/tree_io.h"
+#include "pipeline/write_file.h"
+
+namespace pleinair {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+TreeParams load(const std::string& preset, const std::vector<std::string>& set, std::string& name) {
+    fs::path file = resolve_tree_preset(preset);
+    TreeParams p = load_tree_preset(file, set);
+    name = file.stem().string();
+    return p;
+}
+
+// Refuses an output path that exists and is not a directory, before any work is done.
+void check_out_dir(const std::string& out) {
+    if (!out.empty() && fs::exists(out) && !fs::is_directory(out))
+        throw InputError("--out", "", out + " exists and is not a directory");
+}
+
+nlohmann::ordered_json mesh_counts(const QuadMesh& m) {
+    return {{"vertices", m.positions.size()}, {"faces", m.quads.size()}};
+}
+
+}  // namespace
+
+int run_tree(const TreeCommand& cmd) {
+    std::string name;
+    TreeParams params = load(cmd.preset, cmd.set, name);
+    check_out_dir(cmd.out);
+    if (!cmd.position.empty() && cmd.position.size() != 3)
+        throw InputError("--position", "", "expected x,y,z");
+    if (!cmd.save_preset.empty()) write_file_atomic(cmd.save_preset, save_tree_params(params));
+
+    TreeOptions options;
+    options.tree_id = cmd.id;
+    options.lod = cmd.lod;
+    if (cmd.position.size() == 3)
+        options.origin = {cmd.position[0], cmd.position[1], cmd.position[2]};
+
+    if (cmd.out.empty() && !cmd.stats) return 0;
+    std::vector<double> ms;
+    Tree tree;
+    for (int i = 0; i < std::max(1, cmd.repeat); ++i) {
+        auto t0 = std::chrono::steady_clock::now();
+        tree = generate_tree(params, cmd.seed, options);
+        auto t1 = std::chrono::steady_clock::now();
+        ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+    }
+    if (!cmd.out.empty()) write_tree(tree, name, cmd.out);
+    if (cmd.stats) {
+        std::sort(ms.begin(), ms.end());
+        double median =
+            ms.size() % 2 ? ms[ms.size() / 2] : 0.5 * (ms[ms.size() / 2 - 1] + ms[ms.size() / 2]);
+        Bounds b = bounds_of(tree.render.positions);
+        Bounds lb = bounds_of(tree.leaves.position);
+        if (!tree.leaves.position.empty()) {
+            b.min = glm::min(b.min, lb.min);
+            b.max = glm::max(b.max, lb.max);
+        }
+        auto world = [&](const glm::vec3& v) {
+            glm::dvec3 w = tree.origin + glm::dvec3(v);
+            return nlohmann::ordered_json::array({w.x, w.y, w.z});
+        };
+        nlohmann::ordered_json j;
+        j["preset"] = name;
+        j["seed"] = cmd.seed;
+        j["control"] = mesh_counts(tree.control);
+        j["render"] = mesh_counts(tree.render);
+        j["lod"] = mesh_counts(tree.lod);
+        j["leaves"] = tree.leaves.size();
+        j["branches"] = tree.branches.size() - 1;
+        j["bbox"] = {{"min", world(b.min)}, {"max", world(b.max)}};
+        j["time_ms"] = {{"median", median}, {"repeat", ms.size()}};
+        std::cout << j.dump() << std::endl;
+    }
+    return 0;
+}
+
+int run_family(const FamilyCommand& cmd) {
+    std::string name;
+    TreeParams params = load(cmd.preset, cmd.set, name);
+    check_out_dir(cmd.out);
+    if (!cmd.save_preset.empty()) write_file_atomic(cmd.save_preset, save_tree_params(params));
+    if (cmd.out.empty()) return 0;
+    std::vector<Tree> trees = generate_family(params, cmd.seed, cmd.count);
+    nlohmann::ordered_json index;
+    index["preset"] = name;
+    index["base_seed"] = cmd.seed;
+    index["members"] = nlohmann::ordered_json::array();
+    for (const Tree& t : trees) {
+        char dir[64];
+        std::snprintf(dir, sizeof dir, "%s-%03u-seed-%llu", name.c_str(), t.id,
+                      static_cast<unsigned long long>(t.seed));
+        write_tree(t, name, fs::path(cmd.out) / dir);
+        index["members"].push_back({{"index", t.id}, {"seed", t.seed}, {"dir", dir}});
+    }
+    write_file_atomic(fs::path(cmd.out) / "family.json", index.dump(2) + "\n");
+    std::cout << "wrote " << trees.size() << " " << name << " trees to " << cmd.out << "\n";
+    return 0;
+}
+
+int run_presets(const PresetsCommand& cmd) {
+    if (cmd.reference) {
+        std::cout << tree_params_reference();
+        return 0;
+    }
+    for (const auto& p : list_tree_presets()) {
+        std::printf("tree  %-10s %s\n", p.name.c_str(), p.description.c_str());
+    }
+    return 0;
+}
+
+}  // namespace pleinair

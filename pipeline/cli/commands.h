@@ -1,0 +1,43 @@
+// The pleinair commands as plain functions over plain option structs, so the command line
+// (main.cpp, CLI11) and tests drive the same code.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace pleinair {
+
+struct TreeCommand {
+    std::string preset;
+    uint64_t seed = 1;
+    std::string out;               // directory; empty: write nothing
+    bool stats = false;            // print one JSON line of counts and timing
+    int repeat = 1;                // generations timed for --stats (median reported)
+    std::vector<std::string> set;  // "POINTER=VALUE" overrides
+    std::string save_preset;       // write the resolved parameters here
+    std::vector<double> position;  // where the tree stands (x, y, z); empty: origin
+    uint32_t id = 0;
+    bool lod = true;
+};
+
+struct FamilyCommand {
+    std::string preset;
+    uint64_t seed = 1;  // base seed; member i gets member_seed(seed, i)
+    uint32_t count = 6;
+    std::string out;
+    std::vector<std::string> set;
+    std::string save_preset;
+};
+
+struct PresetsCommand {
+    bool reference = false;  // print the Markdown reference of every key instead
+};
+
+// Each returns the process exit code; InputError and std::runtime_error propagate to main.
+int run_tree(const TreeCommand& cmd);
+int run_family(const FamilyCommand& cmd);
+int run_presets(const PresetsCommand& cmd);
+
+}  // namespace pleinair

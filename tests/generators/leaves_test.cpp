@@ -1,0 +1,152 @@
+// Leaf particles: counts, normalised attributes, unique labels, centre locator and fades.
+#include "generators/leaves.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <set>
+
+#include "generators/tree.h"
+#include "generators/tree_mesh.h"
+#include "test_util.h"
+
+namespace pleinair {
+namespace {
+
+TEST(Leaves, AttributesAreNormalisedUniqueAndFinite) {
+    for (const auto& name : test::shipped_tree_presets()) {
+        TreeOptions o;
+        o.tree_id = 17;
+        Tree t = generate_tree(test::preset(name), 2, o);
+        const LeafParticles& l = t.leaves;
+        ASSERT_GT(l.size(), 100u) << name;
+        EXPECT_EQ(l.normal.size(), l.size());
+        float max_along = 0, max_center = 0;
+        std::set<float> labels;
+        for (size_t i = 0; i < l.size(); ++i) {
+            ASSERT_TRUE(std::isfinite(l.position[i].x + l.position[i].y + l.position[i].z));
+            ASSERT_NEAR(glm::length(l.normal[i]), 1.0f, 1e-5f);
+            ASSERT_GE(l.branch_distance[i], 0.0f);
+            ASSERT_LE(l.branch_distance[i], 1.0f);
+            ASSERT_GE(l.center_distance[i], 0.0f);
+            ASSERT_LE(l.center_distance[i], 1.0f);
+            ASSERT_GT(l.label[i], 0.0f);
+            ASSERT_LT(l.label[i], 1.0f);
+            ASSERT_EQ(l.tree_id[i], 17u);
+            ASSERT_GE(l.position[i].y, 0.0f);
+            max_along = std::max(max_along, l.branch_distance[i]);
+            max_center = std::max(max_center, l.center_distance[i]);
+            labels.insert(l.label[i]);
+        }
+        EXPECT_EQ(max_along, 1.0f) << name;
+        EXPECT_EQ(max_center, 1.0f) << name;
+        EXPECT_EQ(labels.size(), l.size()) << name << ": labels must be unique";
+    }
+}
+
+TEST(Leaves, NeighbouringParticlesGetDistantLabels) {
+    Tree t = generate_tree(test::preset("oak"), 2);
+    double mean_gap = 0;
+    for (size_t i = 1; i < t.leaves.size(); ++i)
+        mean_gap += std::abs(t.leaves.label[i] - t.leaves.label[i - 1]);
+    mean_gap /= double(t.leaves.size() - 1);
+    EXPECT_GT(mean_gap, 0.2);  // consecutive indices would give 1/N
+}
+
+TEST(Leaves, EveryEligibleVertexEmitsAFullImpliedBranchAtProbabilityOne) {
+    TreeParams p = test::preset("poplar");
+    p.leaves.probability = 1;
+    p.leaves.tropism = {{0, 1, 0}, 0.5};  // upward: no strand is cut short by the ground
+    TreeMesh tm;
+    grow_skeleton(tm, p, 6);
+    size_t eligible = 0;
+    for (const Limb& L : tm.limbs) {
+        int last = int(L.rings.size()) - 1;
+        for (int r = 0; r <= last; ++r) {
+            bool ok = L.level == 0 ? (r >= p.leaves.lowest_step_trunk &&
+                                      r <= last - p.leaves.trim_top_steps_trunk)
+                                   : (r >= std::max(1, p.leaves.steps_from_center) &&
+                                      r <= last - p.leaves.steps_from_tip);
+            eligible += ok ? 4 : 0;
+        }
+    }
+    glm::dvec3 center;
+    LeafParticles l = emit_leaves(tm, p, 6, 0, center);
+    EXPECT_EQ(l.size(), eligible * size_t(p.leaves.branching_steps));
+    p.leaves.probability = 0;
+    EXPECT_EQ(emit_leaves(tm, p, 6, 0, center).size(), 0u);
+    EXPECT_EQ(center, tm.limbs[0].centers.back());  // no canopy: the top of the trunk
+}
+
+TEST(Leaves, ParticlesFollowTheirImpliedBranch) {
+    TreeParams p = test::preset("birch");
+    p.leaves.probability = 1;
+    p.leaves.branch_dir_wobble = {0, 0, 0, 180};
+    p.leaves.branching_distance = {0.3, 0, 1e-4, 1e3};
+    p.leaves.tropism.strength = 0;
+    Tree t = generate_tree(p, 3);
+    const auto& l = t.leaves;
+    const size_t k = size_t(p.leaves.branching_steps);
+    ASSERT_EQ(l.size() % k, 0u);
+    for (size_t i = 0; i < l.size(); ++i) {
+        if (i % k == 0) continue;
+        // Each particle sits one branching distance from the previous, along its own normal.
+        glm::vec3 step = l.position[i] - l.position[i - 1];
+        EXPECT_NEAR(glm::length(step), 0.3f, 1e-4f);
+        EXPECT_GT(glm::dot(glm::normalize(step), l.normal[i]), 0.9999f);
+        EXPECT_GT(l.branch_distance[i], l.branch_distance[i - 1]);
+    }
+}
+
+TEST(Leaves, CentreIsTheCanopyCentroidPlusTheOffset) {
+    TreeParams p = test::preset("oak");
+    Tree t = generate_tree(p, 2);
+    glm::dvec3 sum(0);
+    for (const auto& q : t.leaves.position) sum += glm::dvec3(q);
+    glm::vec3 centroid(sum / double(t.leaves.size()));
+    EXPECT_LT(glm::length(t.center - centroid), 1e-3f);
+    p.center_offset = {0, 2, 0};
+    Tree moved = generate_tree(p, 2);
+    EXPECT_LT(glm::length(moved.center - (centroid + glm::vec3(0, 2, 0))), 1e-3f);
+    EXPECT_EQ(moved.leaves.position, t.leaves.position);  // the offset moves only the locator
+}
+
+TEST(Leaves, OuterLeavesFadeFirst) {
+    TreeParams p = test::preset("oak");
+    p.leaves.fade.threshold_var = 0;
+    p.leaves.fade.length = {0.3, 0.1, 0, 10};
+    p.leaves.fade.length_min = 0.2;
+    Tree t = generate_tree(p, 2);
+    const auto& l = t.leaves;
+    std::vector<size_t> order(l.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(),
+              [&](size_t a, size_t b) { return l.center_distance[a] < l.center_distance[b]; });
+    for (size_t i = 1; i < order.size(); ++i)  // without variance: ordered by centre distance
+        ASSERT_LE(l.fade_begin[order[i]], l.fade_begin[order[i - 1]]);
+    for (size_t i = 0; i < l.size(); ++i) {
+        ASSERT_GE(l.fade_begin[i], 0.0f);
+        ASSERT_LE(l.fade_begin[i], 1.0f);
+        ASSERT_GE(l.fade_end[i] - l.fade_begin[i], 0.2f - 1e-6f);
+    }
+    EXPECT_LT(l.fade_begin[order.back()], 0.01f);  // the outermost starts at the near circle
+    EXPECT_GT(l.fade_end[order.front()], 1.0f);    // the innermost survives the far circle
+}
+
+TEST(Leaves, FadeVarianceStillFadesOuterLeavesFirstOnAverage) {
+    Tree t = generate_tree(test::preset("oak"), 2);
+    double outer = 0, inner = 0;
+    int n_outer = 0, n_inner = 0;
+    for (size_t i = 0; i < t.leaves.size(); ++i) {
+        if (t.leaves.center_distance[i] > 0.6f) outer += t.leaves.fade_begin[i], ++n_outer;
+        if (t.leaves.center_distance[i] < 0.4f) inner += t.leaves.fade_begin[i], ++n_inner;
+    }
+    ASSERT_GT(n_outer, 0);
+    ASSERT_GT(n_inner, 0);
+    EXPECT_LT(outer / n_outer + 0.2, inner / n_inner);
+}
+
+}  // namespace
+}  // namespace pleinair

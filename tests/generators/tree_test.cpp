@@ -1,0 +1,216 @@
+// Whole trees: valid meshes for every preset, determinism, family resemblance, species shapes
+// and the hard cases (variance 0, probabilities 0 and 1, extreme units, far from the origin).
+#include "generators/tree.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <glm/geometric.hpp>
+
+#include "test_util.h"
+
+namespace pleinair {
+namespace {
+
+void expect_valid(const Tree& t, const std::string& what) {
+    for (const QuadMesh* m : {&t.control, &t.render}) {
+        MeshCheck c = check_mesh(*m);
+        EXPECT_TRUE(c.ok()) << what;
+        EXPECT_EQ(c.euler, 2) << what;
+        EXPECT_GT(c.min_face_area, 0.0) << what;
+    }
+    if (!t.lod.quads.empty()) {
+        MeshCheck c = check_mesh(t.lod);
+        EXPECT_TRUE(c.ok()) << what;
+        EXPECT_EQ(c.euler, 2) << what;
+    }
+    for (size_t i = 0; i < t.leaves.size(); ++i) {
+        const auto& p = t.leaves.position[i];
+        ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) << what;
+        ASSERT_TRUE(std::isfinite(t.leaves.fade_begin[i]) && std::isfinite(t.leaves.fade_end[i]));
+        ASSERT_TRUE(std::isfinite(t.leaves.normal[i].x)) << what;
+    }
+    EXPECT_TRUE(std::isfinite(t.center.x + t.center.y + t.center.z)) << what;
+}
+
+TEST(Tree, EveryPresetGivesClosedManifoldMeshes) {
+    for (const auto& name : test::shipped_tree_presets())
+        for (uint64_t seed : {1, 2, 3, 4}) {
+            Tree t = generate_tree(test::preset(name), seed);
+            expect_valid(t, name + " seed " + std::to_string(seed));
+            EXPECT_GT(t.render.positions.size(), t.control.positions.size() * 10);
+            EXPECT_LT(t.lod.quads.size(), t.render.quads.size());
+        }
+}
+
+TEST(Tree, SamePresetAndSeedGiveTheSameBytes) {
+    for (const auto& name : test::shipped_tree_presets()) {
+        TreeParams p = test::preset(name);
+        EXPECT_EQ(test::hash_tree(generate_tree(p, 42)), test::hash_tree(generate_tree(p, 42)));
+        EXPECT_NE(test::hash_tree(generate_tree(p, 42)), test::hash_tree(generate_tree(p, 43)));
+    }
+}
+
+struct Shape {
+    float height, width, crown_base, low_leaf_fraction;
+    size_t leaves;
+};
+
+// A few numbers that tell species apart at a glance: height, spread, where the crown starts,
+// how much foliage hangs low.
+Shape shape_of(const Tree& t) {
+    Bounds b = bounds_of(t.leaves.position);
+    Bounds m = bounds_of(t.render.positions);
+    float top = std::max(b.max.y, m.max.y);
+    Shape s;
+    s.height = top;
+    s.width = std::max(b.max.x - b.min.x, b.max.z - b.min.z);
+    std::vector<float> ys;
+    for (const auto& p : t.leaves.position) ys.push_back(p.y);
+    std::sort(ys.begin(), ys.end());
+    s.crown_base = ys[ys.size() / 20] / top;  // 5th percentile of leaf height
+    s.low_leaf_fraction =
+        float(std::lower_bound(ys.begin(), ys.end(), 0.35f * top) - ys.begin()) / ys.size();
+    s.leaves = ys.size();
+    return s;
+}
+
+TEST(Tree, ChangingOnlyTheSeedGivesARecognisablySimilarTree) {
+    for (const auto& name : test::shipped_tree_presets()) {
+        TreeParams p = test::preset(name);
+        std::vector<Shape> family;
+        for (uint64_t seed = 1; seed <= 9; ++seed)
+            family.push_back(shape_of(generate_tree(p, seed)));
+        auto median = [&](auto field) {
+            std::vector<float> v;
+            for (const Shape& s : family) v.push_back(field(s));
+            std::nth_element(v.begin(), v.begin() + 4, v.end());
+            return v[4];
+        };
+        float height = median([](const Shape& s) { return s.height; });
+        float aspect = median([](const Shape& s) { return s.width / s.height; });
+        for (size_t i = 0; i < family.size(); ++i) {
+            EXPECT_NEAR(family[i].height / height, 1.0, 0.3) << name << " member " << i;
+            EXPECT_NEAR(family[i].width / family[i].height / aspect, 1.0, 0.5)
+                << name << " member " << i;
+        }
+    }
+}
+
+TEST(Tree, PresetsReadAsDifferentSpecies) {
+    auto mean = [](const std::string& name) {
+        Shape m{0, 0, 0, 0, 0};
+        for (uint64_t seed = 1; seed <= 6; ++seed) {
+            Shape s = shape_of(generate_tree(test::preset(name), seed));
+            m.height += s.height / 6, m.width += s.width / 6, m.crown_base += s.crown_base / 6;
+            m.low_leaf_fraction += s.low_leaf_fraction / 6, m.leaves += s.leaves / 6;
+        }
+        return m;
+    };
+    auto print = [](const char* n, const Shape& s) {
+        std::printf("%-7s height %5.2f width %5.2f crown base %4.2f low leaves %4.2f leaves %zu\n",
+                    n, s.height, s.width, s.crown_base, s.low_leaf_fraction, s.leaves);
+    };
+    Shape oak = mean("oak"), poplar = mean("poplar"), willow = mean("willow"),
+          birch = mean("birch"), pine = mean("pine"), shrub = mean("shrub");
+    for (auto [n, s] : {std::pair{"oak", oak},
+                        {"poplar", poplar},
+                        {"willow", willow},
+                        {"birch", birch},
+                        {"pine", pine},
+                        {"shrub", shrub}})
+        print(n, s);
+    EXPECT_GT(poplar.height / poplar.width, 2.5f);  // a column
+    EXPECT_LT(oak.height / oak.width, 1.2f);        // broader than tall
+    EXPECT_GT(willow.low_leaf_fraction, 0.3f);      // foliage hangs low
+    EXPECT_GT(pine.crown_base, 0.5f);               // bare trunk, crown on top
+    EXPECT_GT(pine.width / (pine.height * (1 - pine.crown_base)), 1.8f);  // flat parasol
+    EXPECT_LT(shrub.height, 5.0f);                                        // low
+    EXPECT_GT(birch.crown_base, 0.3f);
+    EXPECT_LT(birch.leaves, oak.leaves / 2);  // airy
+    EXPECT_GT(oak.height, shrub.height * 2);
+}
+
+TEST(Tree, ZeroVarianceAndExtremeProbabilitiesStayValid) {
+    TreeParams p = test::preset("oak");
+    for (Param* q :
+         {&p.trunk.initial_size, &p.trunk.max_height, &p.trunk.extrude_length, &p.trunk.twist,
+          &p.trunk.taper, &p.trunk.wobble, &p.branches.angle, &p.branches.max_length,
+          &p.branches.extrude_length, &p.branches.taper, &p.branches.wobble, &p.leaves.branch_angle,
+          &p.leaves.branching_distance, &p.leaves.branch_dir_wobble})
+        q->var = 0;
+    expect_valid(generate_tree(p, 1), "variance 0");
+    for (double prob : {0.0, 1.0}) {
+        p.branches.probability = p.twigs.probability = p.leaves.probability = prob;
+        Tree t = generate_tree(p, 1);
+        expect_valid(t, "probability " + std::to_string(prob));
+        EXPECT_EQ(t.branches.size() == 1, prob == 0.0);
+        EXPECT_EQ(t.leaves.size() == 0, prob == 0.0);
+    }
+}
+
+TEST(Tree, TaperZeroEverywhereStaysValid) {
+    TreeParams p = test::preset("oak");
+    p.trunk.taper = {0, 0, 0, 1};
+    p.branches.taper = {0, 0, 0, 1};
+    p.twigs.taper = {0, 0, 0, 1};
+    expect_valid(generate_tree(p, 1), "taper 0");
+    p.trunk.taper = {0.6, 0, 0, 1};
+    expect_valid(generate_tree(p, 1), "branch taper 0");
+}
+
+TEST(Tree, HalfTurnTwistPerStepStaysValid) {
+    TreeParams p = test::preset("willow");
+    p.trunk.twist = p.branches.twist = p.twigs.twist = {180, 0, -360, 360};
+    expect_valid(generate_tree(p, 3), "twist 180");
+}
+
+// The unit scales every length: a tree at unit u is the unit-1 tree scaled by u.
+TEST(Tree, ExtremeUnitsScaleTheSameTree) {
+    TreeParams p = test::preset("oak");
+    Tree ref = generate_tree(p, 9);
+    for (double unit : {1e-4, 1e4}) {
+        p.unit = unit;
+        Tree t = generate_tree(p, 9);
+        expect_valid(t, "unit " + std::to_string(unit));
+        ASSERT_EQ(t.render.positions.size(), ref.render.positions.size());
+        ASSERT_EQ(t.leaves.size(), ref.leaves.size());
+        float scale = glm::length(bounds_of(ref.render.positions).max);
+        for (size_t i = 0; i < ref.render.positions.size(); ++i)
+            ASSERT_LT(glm::length(t.render.positions[i] / float(unit) - ref.render.positions[i]),
+                      1e-4f * scale);
+        EXPECT_EQ(t.leaves.label, ref.leaves.label);
+        for (size_t i = 0; i < ref.leaves.size(); ++i)
+            ASSERT_NEAR(t.leaves.center_distance[i], ref.leaves.center_distance[i], 1e-5f);
+    }
+}
+
+// Far from the origin the tree is the same tree: it is grown in its own frame and only placed.
+TEST(Tree, FarFromTheOriginIsTheSameTree) {
+    TreeParams p = test::preset("pine");
+    Tree ref = generate_tree(p, 4);
+    TreeOptions o;
+    o.origin = {1e5, 0, -1e5};
+    Tree far = generate_tree(p, 4, o);
+    EXPECT_EQ(far.origin, o.origin);
+    EXPECT_EQ(test::hash_tree(far), test::hash_tree(ref));
+}
+
+TEST(Tree, InvalidParametersAreRejectedWithEveryProblem) {
+    TreeParams p;
+    p.trunk.taper.base = 1.7;
+    p.leaves.probability = -0.1;
+    try {
+        generate_tree(p, 1);
+        FAIL() << "expected InvalidParams";
+    } catch (const InvalidParams& e) {
+        ASSERT_EQ(e.problems.size(), 2u);
+        EXPECT_EQ(e.problems[0], "/trunk/taper/base: must be in [0, 1], got 1.7");
+        EXPECT_EQ(e.problems[1], "/leaves/probability: must be in [0, 1], got -0.1");
+    }
+}
+
+}  // namespace
+}  // namespace pleinair

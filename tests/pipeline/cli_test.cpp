@@ -1,0 +1,126 @@
+// The pleinair binary as a user runs it: outputs, exit codes and one-line errors.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "test_util.h"
+
+namespace pleinair {
+namespace {
+
+namespace fs = std::filesystem;
+using test::run_pleinair;
+
+size_t line_count(const std::string& s) { return std::count(s.begin(), s.end(), '\n'); }
+
+TEST(Cli, TreeWritesMeshesAndParticlesDeterministically) {
+    auto dir = test::temp_dir("cli-tree");
+    auto a = run_pleinair("tree --preset oak --seed 3 -o " + (dir / "a").string());
+    ASSERT_EQ(a.exit_code, 0) << a.err;
+    EXPECT_EQ(a.err, "");
+    auto b = run_pleinair("tree --preset oak --seed 3 --threads 1 --out " + (dir / "b").string());
+    ASSERT_EQ(b.exit_code, 0) << b.err;
+    for (const char* f : {"control.obj", "control.ply", "render.obj", "render.ply", "lod.obj",
+                          "lod.ply", "leaves.ply", "tree.json"}) {
+        std::string bytes = test::read_file(dir / "a" / f);
+        EXPECT_GT(bytes.size(), 100u) << f;
+        EXPECT_EQ(bytes, test::read_file(dir / "b" / f)) << f;
+    }
+    auto meta = nlohmann::json::parse(test::read_file(dir / "a" / "tree.json"));
+    EXPECT_EQ(meta["seed"], 3);
+    EXPECT_EQ(meta["branches"][0]["id"], 0);
+    EXPECT_EQ(meta["branches"][0]["parent"], -1);
+    fs::remove_all(dir);
+}
+
+TEST(Cli, StatsIsOneJsonLine) {
+    auto r = run_pleinair("tree --preset poplar --seed 2 --stats --repeat 3");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(line_count(r.out), 1u);
+    auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["preset"], "poplar");
+    EXPECT_GT(j["render"]["vertices"].get<int>(), j["control"]["vertices"].get<int>());
+    EXPECT_GT(j["leaves"].get<int>(), 0);
+    EXPECT_EQ(j["time_ms"]["repeat"], 3);
+    EXPECT_GT(j["time_ms"]["median"].get<double>(), 0.0);
+    EXPECT_LT(j["bbox"]["min"][1].get<double>(), j["bbox"]["max"][1].get<double>());
+}
+
+TEST(Cli, BadPresetIsOneLineExitTwoAndNothingWritten) {
+    auto dir = test::temp_dir("cli-bad");
+    fs::path bad = dir / "bad.json";
+    { std::ofstream(bad) << "{ \"trunk\": { \"taper\": { \"base\": 1.7, \"var\": 0.02 } } }"; }
+    auto r = run_pleinair("tree --preset " + bad.string() + " -o " + (dir / "out").string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, bad.string() + ": /trunk/taper/base: must be in [0, 1], got 1.7\n");
+    EXPECT_FALSE(fs::exists(dir / "out"));
+    fs::remove_all(dir);
+}
+
+TEST(Cli, MissingAndUnknownPresetsExitTwo) {
+    auto r = run_pleinair("tree --preset /nonexistent/x.json -o /tmp/never");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(line_count(r.err), 1u);
+    EXPECT_NE(r.err.find("/nonexistent/x.json"), std::string::npos) << r.err;
+    r = run_pleinair("tree --preset oka --stats");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("available: birch"), std::string::npos) << r.err;
+}
+
+TEST(Cli, UsageErrorsExitTwo) {
+    EXPECT_EQ(run_pleinair("family --preset oak --count 0 -o /tmp/never").exit_code, 2);
+    EXPECT_EQ(run_pleinair("tree --seed 3").exit_code, 2);
+    EXPECT_EQ(run_pleinair("tree --preset oak --set /trunk/taper=x").exit_code, 2);
+    EXPECT_EQ(run_pleinair("frobnicate").exit_code, 2);
+    auto help = run_pleinair("tree --help");
+    EXPECT_EQ(help.exit_code, 0);
+    EXPECT_NE(help.out.find("--preset"), std::string::npos);
+}
+
+TEST(Cli, PresetsListsEveryShippedFamily) {
+    auto r = run_pleinair("presets");
+    ASSERT_EQ(r.exit_code, 0);
+    EXPECT_EQ(line_count(r.out), test::shipped_tree_presets().size());
+    for (const auto& name : test::shipped_tree_presets())
+        EXPECT_NE(r.out.find(" " + name + " "), std::string::npos) << name;
+}
+
+TEST(Cli, SavedPresetReproducesTheTweakedTree) {
+    auto dir = test::temp_dir("cli-save");
+    std::string saved = (dir / "tweaked.json").string();
+    auto a = run_pleinair(
+        "tree --preset willow --set /leaves/branching_steps=4 --seed 8 "
+        "--save-preset " +
+        saved + " -o " + (dir / "a").string());
+    ASSERT_EQ(a.exit_code, 0) << a.err;
+    auto b = run_pleinair("tree --preset " + saved + " --seed 8 -o " + (dir / "b").string());
+    ASSERT_EQ(b.exit_code, 0) << b.err;
+    EXPECT_EQ(test::read_file(dir / "a" / "leaves.ply"), test::read_file(dir / "b" / "leaves.ply"));
+    EXPECT_EQ(test::read_file(dir / "a" / "render.ply"), test::read_file(dir / "b" / "render.ply"));
+    fs::remove_all(dir);
+}
+
+TEST(Cli, FamilyWritesEveryMemberTheSameOnOneOrTwoThreads) {
+    auto dir = test::temp_dir("cli-family");
+    auto a = run_pleinair("family --preset shrub --count 3 --seed 4 --threads 1 -o " +
+                          (dir / "a").string());
+    ASSERT_EQ(a.exit_code, 0) << a.err;
+    auto b = run_pleinair("family --preset shrub --count 3 --seed 4 --threads 2 -o " +
+                          (dir / "b").string());
+    ASSERT_EQ(b.exit_code, 0) << b.err;
+    auto index = nlohmann::json::parse(test::read_file(dir / "a" / "family.json"));
+    ASSERT_EQ(index["members"].size(), 3u);
+    for (const auto& m : index["members"]) {
+        std::string sub = m["dir"];
+        EXPECT_EQ(test::read_file(dir / "a" / sub / "leaves.ply"),
+                  test::read_file(dir / "b" / sub / "leaves.ply"));
+        EXPECT_TRUE(fs::exists(dir / "a" / sub / "render.obj"));
+    }
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace pleinair

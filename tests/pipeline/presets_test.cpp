@@ -1,0 +1,145 @@
+// Preset files: every shipped preset loads; bad ones give one line per problem naming the file
+// and the key; saved presets load back to the same tree.
+#include "pipeline/presets.h"
+
+#include <gtest/gtest.h>
+
+#include "generators/tree.h"
+#include "pipeline/error.h"
+#include "pipeline/json_params.h"
+#include "test_util.h"
+
+namespace pleinair {
+namespace {
+
+std::vector<std::string> problems_of(const std::string& text, std::vector<std::string> set = {}) {
+    try {
+        parse_tree_params(text, "presets/trees/oak.json", set);
+    } catch (const InputError& e) {
+        std::vector<std::string> lines;
+        std::string all = e.what();
+        size_t start = 0;
+        while (start <= all.size()) {
+            size_t end = all.find('\n', start);
+            if (end == std::string::npos) end = all.size();
+            lines.push_back(all.substr(start, end - start));
+            start = end + 1;
+        }
+        return lines;
+    }
+    return {};
+}
+
+TEST(Presets, AtLeastSixShipWithDescriptions) {
+    auto presets = list_tree_presets();
+    ASSERT_GE(presets.size(), 6u);
+    for (const auto& p : presets) {
+        EXPECT_FALSE(p.description.empty()) << p.name;
+        EXPECT_EQ(load_tree_preset(p.file).name, p.name) << "name key matches the file name";
+    }
+}
+
+TEST(Presets, OutOfRangeNamesFileKeyRangeAndValue) {
+    EXPECT_EQ(problems_of(R"({"trunk": {"taper": {"base": 1.7, "var": 0.02}}})"),
+              std::vector<std::string>{
+                  "presets/trees/oak.json: /trunk/taper/base: must be in [0, 1], got 1.7"});
+    // A plain number is named as written.
+    EXPECT_EQ(problems_of(R"({"trunk": {"taper": 1.7}})"),
+              std::vector<std::string>{
+                  "presets/trees/oak.json: /trunk/taper: must be in [0, 1], got 1.7"});
+    EXPECT_EQ(problems_of(R"({"trunk": {"taper": {"base": 0.9, "var": -1}}})"),
+              std::vector<std::string>{
+                  "presets/trees/oak.json: /trunk/taper/var: must be in [0, 1], got -1"});
+}
+
+TEST(Presets, UnknownKeysAreErrorsWithASuggestion) {
+    EXPECT_EQ(problems_of(R"({"trunk": {"tapr": 0.9}})"),
+              std::vector<std::string>{
+                  "presets/trees/oak.json: /trunk/tapr: unknown key (did you mean \"taper\"?)"});
+    EXPECT_EQ(problems_of(R"({"colour": 1})"),
+              std::vector<std::string>{"presets/trees/oak.json: /colour: unknown key"});
+    EXPECT_EQ(problems_of(R"({"trunk": {"taper": {"base": 0.9, "varr": 0.1}}})").size(), 1u);
+}
+
+TEST(Presets, WrongTypesSayWhatWasExpected) {
+    EXPECT_EQ(problems_of(R"({"trunk": {"max_steps": "ten"}})"),
+              std::vector<std::string>{
+                  "presets/trees/oak.json: /trunk/max_steps: expected an integer, got \"ten\""});
+    EXPECT_EQ(problems_of(R"({"trunk": {"max_steps": 2.5}})"),
+              std::vector<std::string>{
+                  "presets/trees/oak.json: /trunk/max_steps: expected an integer, got 2.5"});
+    EXPECT_EQ(
+        problems_of(R"({"trunk": 3})"),
+        std::vector<std::string>{"presets/trees/oak.json: /trunk: expected an object, got 3"});
+    EXPECT_EQ(problems_of(R"({"center_offset": [1, 2]})"),
+              std::vector<std::string>{"presets/trees/oak.json: /center_offset: expected three "
+                                       "numbers [x, y, z], got [1,2]"});
+    EXPECT_EQ(problems_of(R"({"trunk": {"max_steps": 100000}})"),
+              std::vector<std::string>{
+                  "presets/trees/oak.json: /trunk/max_steps: must be in [0, 256], got 100000"});
+}
+
+TEST(Presets, EveryProblemGetsItsOwnLine) {
+    auto lines = problems_of(R"({"unit": 0, "leaves": {"probability": 2}, "lod": {"x": 1}})");
+    ASSERT_EQ(lines.size(), 3u);
+    EXPECT_EQ(lines[0], "presets/trees/oak.json: /lod/x: unknown key");
+    EXPECT_EQ(lines[1], "presets/trees/oak.json: /unit: must be in [1e-06, 1e+06], got 0");
+    EXPECT_EQ(lines[2], "presets/trees/oak.json: /leaves/probability: must be in [0, 1], got 2");
+}
+
+TEST(Presets, SyntaxErrorsGiveTheLine) {
+    auto lines = problems_of("{\n  \"unit\": 1,\n  \"trunk\": {,}\n}");
+    ASSERT_EQ(lines.size(), 1u);
+    EXPECT_NE(lines[0].find("presets/trees/oak.json: "), std::string::npos);
+    EXPECT_NE(lines[0].find("line 3"), std::string::npos) << lines[0];
+}
+
+TEST(Presets, CommentsAreAllowed) {
+    TreeParams p = parse_tree_params("// a comment\n{ /* inline */ \"unit\": 2 }", "x.json");
+    EXPECT_EQ(p.unit, 2);
+}
+
+TEST(Presets, MissingFileAndUnknownNameAreInputErrors) {
+    EXPECT_THROW(load_tree_preset("/nonexistent/oak.json"), InputError);
+    try {
+        resolve_tree_preset("oka");
+        FAIL();
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("available: birch"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Presets, OverridesAreAppliedAndValidated) {
+    std::string text = test::read_file(test::source_dir() / "presets/trees/oak.json");
+    TreeParams p =
+        parse_tree_params(text, "oak.json", {"/trunk/taper/base=0.5", "/twigs/enabled=false"});
+    EXPECT_EQ(p.trunk.taper.base, 0.5);
+    EXPECT_FALSE(p.twigs.enabled);
+    EXPECT_EQ(problems_of(text, {"/trunk/taper/base=1.7"}),
+              std::vector<std::string>{"presets/trees/oak.json: /trunk/taper/base: must be in "
+                                       "[0, 1], got 1.7 (set by --set)"});
+    EXPECT_EQ(problems_of(text, {"trunk.taper=0.5"}).size(), 1u);
+}
+
+TEST(Presets, SavedPresetLoadsBackToTheSameTree) {
+    for (const auto& name : test::shipped_tree_presets()) {
+        TreeParams p = test::preset(name);
+        p.trunk.taper.base = 0.91;  // a tweak
+        std::string saved = save_tree_params(p);
+        TreeParams back = parse_tree_params(saved, "saved.json");
+        EXPECT_EQ(save_tree_params(back), saved) << name;
+        EXPECT_EQ(test::hash_tree(generate_tree(back, 5)), test::hash_tree(generate_tree(p, 5)))
+            << name;
+    }
+}
+
+TEST(Presets, ReadmeReferenceMatchesTheKeyTable) {
+    std::string readme = test::read_file(test::source_dir() / "README.md");
+    std::string table = tree_params_reference();
+    EXPECT_NE(readme.find(table), std::string::npos)
+        << "README.md's preset reference is stale; regenerate it with "
+           "`build/pleinair presets --reference`";
+}
+
+}  // namespace
+}  // namespace pleinair

@@ -1,0 +1,45 @@
+// Helpers shared by the tests: shipped presets, tree hashes, a binary PLY reader and a way to
+// run the pleinair binary.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "generators/tree.h"
+
+namespace pleinair::test {
+
+std::filesystem::path source_dir();
+TreeParams preset(const std::string& name);
+std::vector<std::string> shipped_tree_presets();
+
+// FNV-1a over every array of the tree, in a fixed order.
+uint64_t hash_tree(const Tree& tree);
+uint64_t hash_bytes(const void* data, size_t size, uint64_t h = 1469598103934665603ull);
+
+// A PLY file's vertex element: property names in order, and their values per vertex.
+struct Ply {
+    std::string format;
+    size_t vertex_count = 0;
+    size_t face_count = 0;
+    std::vector<std::string> vertex_properties;
+    std::map<std::string, std::vector<double>> columns;
+};
+Ply parse_ply(const std::string& bytes);
+
+std::string read_file(const std::filesystem::path& path);
+
+struct RunResult {
+    int exit_code = -1;
+    std::string out, err;
+};
+// Runs the pleinair binary with `args` (shell words) from the source directory.
+RunResult run_pleinair(const std::string& args);
+
+// A fresh empty directory under the system's temporary folder.
+std::filesystem::path temp_dir(const std::string& name);
+
+}  // namespace pleinair::test
