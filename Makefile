@@ -9,7 +9,7 @@ DEPS := build-essential cmake ninja-build libopenmesh-dev libglm-dev libopenimag
         libgtest-dev libbenchmark-dev libhwy-dev
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps build render test test-sanitize bench format clean
+.PHONY: all deps build render test test-sanitize bench format reference clean
 
 all: build
 
@@ -45,6 +45,13 @@ test-sanitize: deps
 
 bench: build
 	$(BUILD)/tests/pleinair_bench
+
+# Regenerates the preset key reference in README.md from the key table in the code.
+reference: build
+	$(BUILD)/pleinair presets --reference > $(BUILD)/reference.md
+	awk -v ref=$(BUILD)/reference.md '/<!-- END tree preset reference/ {skip=0} \
+	    !skip {print} /<!-- BEGIN tree preset reference/ {while ((getline l < ref) > 0) print l; skip=1}' \
+	    README.md > $(BUILD)/README.md && mv $(BUILD)/README.md README.md
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

@@ -30,10 +30,12 @@ void sprout(TreeMesh& tm, int parent_index, int s, int j, int level, uint64_t ke
     const double max_length = sample(bp.max_length, rng) * tm.unit;
     const double first_length = sample(bp.first_length, rng) * tm.unit;
     const double first_taper = sample(bp.first_taper, rng);
+    const int max_steps = sample_whole(bp.max_steps, rng);
+    const double tropism_strength = sample(bp.tropism.strength, rng);
 
     const Limb& P = tm.limbs[parent_index];
     FaceHandle f = P.sides[4 * s + j];
-    if (!f.is_valid() || tm.mesh.status(f).deleted()) return;
+    if (!f.is_valid()) return;
     Ring a;
     auto h = tm.mesh.halfedge_handle(f);
     glm::dvec3 p[4], c(0);
@@ -94,6 +96,7 @@ void sprout(TreeMesh& tm, int parent_index, int s, int j, int level, uint64_t ke
     const double parent_radius_here = parent_r;
     std::array<FaceHandle, 4> sides;
     Ring b = extrude_face(tm, f, a, pos, sides);
+    tm.limbs[parent_index].sides[4 * s + j] = FaceHandle();  // f is the branch's cap now
 
     Limb L;
     L.key = key;
@@ -104,14 +107,16 @@ void sprout(TreeMesh& tm, int parent_index, int s, int j, int level, uint64_t ke
     L.sides.assign(sides.begin(), sides.end());
     L.centers = {c, c1};
     L.radii = {parent_radius_here, half_diag};
+    L.top = f;
     L.direction = n;
     L.heading = safe_normalize(heading, n);
     L.length = first_length;
     tm.limbs.push_back(std::move(L));
 
-    StepParams sp{&bp.extrude_length, &bp.twist, &bp.taper, &bp.wobble, bp.tropism};
+    StepParams sp{&bp.extrude_length,   &bp.twist,       &bp.taper, &bp.wobble,
+                  bp.tropism.direction, tropism_strength};
     StopRule stop;
-    stop.max_steps = bp.max_steps - 1;
+    stop.max_steps = max_steps - 1;
     stop.max_length = max_length;
     grow_limb(tm, static_cast<int>(tm.limbs.size()) - 1, sp, stop, rng);
 }
@@ -120,18 +125,23 @@ void sprout(TreeMesh& tm, int parent_index, int s, int j, int level, uint64_t ke
 
 void grow_branches(TreeMesh& tm, const BranchParams& bp, int level, uint64_t seed) {
     if (!bp.enabled) return;
+    // Per-tree draws of this level, from their own stream.
+    Rng tree_rng = make_rng(seed, Purpose::kTree, static_cast<uint64_t>(level));
+    const double min_height = sample(bp.min_height, tree_rng);
+    const double max_height = sample(bp.max_height, tree_rng);
+    const double probability = sample(bp.probability, tree_rng);
     const int n_limbs = static_cast<int>(tm.limbs.size());
     for (int li = 0; li < n_limbs; ++li) {
         if (tm.limbs[li].level != level - 1) continue;
         const int segments = static_cast<int>(tm.limbs[li].rings.size()) - 1;
         for (int s = 0; s < segments; ++s) {
             double at = position_along(tm.limbs[li], s);
-            bool eligible = at >= bp.min_height && at <= bp.max_height;
+            bool eligible = at >= min_height && at <= max_height;
             for (int j = 0; j < 4; ++j) {
                 uint64_t key = hash_keys(tm.limbs[li].key, static_cast<uint64_t>(level),
                                          static_cast<uint64_t>(s), static_cast<uint64_t>(j));
                 Rng decide = make_rng(seed, Purpose::kBranchDecide, key);
-                if (eligible && rand1(decide) < bp.probability)
+                if (eligible && rand1(decide) < probability)
                     sprout(tm, li, s, j, level, key, bp, seed);
             }
         }

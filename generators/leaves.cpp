@@ -13,11 +13,20 @@ namespace pleinair {
 
 namespace {
 
-bool vertex_eligible(const Limb& L, int ring, const LeafParams& lp) {
-    const int last = static_cast<int>(L.rings.size()) - 1;
-    if (L.level == 0) return ring >= lp.lowest_step_trunk && ring <= last - lp.trim_top_steps_trunk;
+// Which rings of a limb may emit leaves: [first, last].
+struct RingRange {
+    int first, last;
+};
+
+RingRange eligible_rings(const Limb& L, const LeafParams& lp, int lowest_trunk, int trim_trunk,
+                         uint64_t seed) {
+    const int top = static_cast<int>(L.rings.size()) - 1;
+    if (L.level == 0) return {lowest_trunk, top - trim_trunk};
+    Rng rng = make_rng(seed, Purpose::kLeafLimb, L.key);
+    const int from_center = sample_whole(lp.steps_from_center, rng);
+    const int from_tip = sample_whole(lp.steps_from_tip, rng);
     // Ring 0 of a branch is its parent's face: those vertices belong to the parent.
-    return ring >= std::max(1, lp.steps_from_center) && ring <= last - lp.steps_from_tip;
+    return {std::max(1, from_center), top - from_tip};
 }
 
 // A stride coprime with n near n / golden ratio: (i * stride) mod n is a permutation that puts
@@ -46,18 +55,22 @@ LeafParticles emit_leaves(const TreeMesh& tm, const TreeParams& params, uint64_t
         uint64_t key;
     };
     std::vector<Emitter> emitters;
+    Rng tree_rng = make_rng(seed, Purpose::kTree, uint64_t{100});
+    const int lowest_trunk = sample_whole(lp.lowest_step_trunk, tree_rng);
+    const int trim_trunk = sample_whole(lp.trim_top_steps_trunk, tree_rng);
+    const double probability = sample(lp.probability, tree_rng);
     for (const Limb& L : tm.limbs) {
-        for (int r = 0; r < static_cast<int>(L.rings.size()); ++r) {
-            if (!vertex_eligible(L, r, lp)) continue;
+        const RingRange rings = eligible_rings(L, lp, lowest_trunk, trim_trunk, seed);
+        for (int r = rings.first; r <= rings.last; ++r) {
             for (int j = 0; j < 4; ++j) {
                 const uint64_t key =
                     hash_keys(L.key, static_cast<uint64_t>(r), static_cast<uint64_t>(j));
                 Rng decide = make_rng(seed, Purpose::kLeafDecide, key);
-                if (rand1(decide) < lp.probability) emitters.push_back({&L, r, j, key});
+                if (rand1(decide) < probability) emitters.push_back({&L, r, j, key});
             }
         }
     }
-    const size_t most = emitters.size() * static_cast<size_t>(lp.branching_steps);
+    const size_t most = emitters.size() * static_cast<size_t>(std::lround(lp.branching_steps.base));
     pos.reserve(most);
     along.reserve(most);
     out.normal.reserve(most);
@@ -76,17 +89,19 @@ LeafParticles emit_leaves(const TreeMesh& tm, const TreeParams& params, uint64_t
         const double cos_t = 1.0 - rand1(rng) * (1.0 - std::cos(half));
         const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
         glm::dvec3 dir = turn_direction(outward, cos_t, sin_t, rand1(rng));
+        const int steps = sample_whole(lp.branching_steps, rng);
+        const double tropism = sample(lp.tropism.strength, rng);
 
         glm::dvec3 p = p0;
         double dist = 0;
         bool grounded = false;
-        for (int k = 0; k < lp.branching_steps; ++k) {
+        for (int k = 0; k < steps; ++k) {
             const double wob = sample(lp.branch_dir_wobble, rng);
             const double wob_az = rand1(rng);
             const double step = sample(lp.branching_distance, rng) * tm.unit;
             const double gs = rand_gaussian(rng), gl = rand_gaussian(rng);
             if (grounded) continue;  // keep drawing: the stream's position is fixed
-            dir = apply_tropism(wobble_direction(dir, wob, wob_az), lp.tropism);
+            dir = apply_tropism(wobble_direction(dir, wob, wob_az), lp.tropism.direction, tropism);
             const glm::dvec3 next = p + dir * step;
             if (next.y < 0) {  // leaves never go under the ground
                 grounded = true;

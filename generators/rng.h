@@ -31,7 +31,8 @@ enum class Purpose : uint64_t {
     kBranchGrow = 4,
     kLeafDecide = 5,
     kLeafGrow = 6,
-    kFamily = 7,  // member seeds of a family
+    kFamily = 7,    // member seeds of a family
+    kLeafLimb = 8,  // per-limb leaf eligibility
 };
 
 // PCG32 (O'Neill 2014): small state, good statistics, and fully specified, so every platform

@@ -66,37 +66,54 @@ glm::dvec3 wobble_direction(const glm::dvec3& v, double degrees, double turns) {
     return turn_direction(v, std::cos(t), std::sin(t), turns);
 }
 
-glm::dvec3 apply_tropism(const glm::dvec3& heading, const Tropism& t) {
-    if (t.strength <= 0) return heading;
-    glm::dvec3 d = safe_normalize(t.direction, glm::dvec3(0));
-    return safe_normalize(heading + t.strength * d, heading);
+glm::dvec3 apply_tropism(const glm::dvec3& heading, const glm::dvec3& direction, double strength) {
+    if (strength <= 0) return heading;
+    glm::dvec3 d = safe_normalize(direction, glm::dvec3(0));
+    return safe_normalize(heading + strength * d, heading);
 }
 
 TreeMesh::TreeMesh() {
-    // Room for a large tree up front: growing OpenMesh's arrays (and their status properties)
-    // step by step showed in profiles.
+    // Room for a large tree up front: growing OpenMesh's arrays step by step showed in profiles.
     mesh.reserve(2048, 4096, 2048);
-    mesh.request_vertex_status();
-    mesh.request_face_status();
-    mesh.request_edge_status();
-    mesh.request_halfedge_status();
 }
 
 glm::dvec3 TreeMesh::point(VertexHandle v) const { return to_glm(mesh.point(v)); }
 
 Ring extrude_face(TreeMesh& tm, FaceHandle face, const Ring& a,
                   const std::array<glm::dvec3, 4>& pos, std::array<FaceHandle, 4>& sides) {
+    // The face itself moves up to become the new top, and four new quads fill the sides. The
+    // connectivity is spliced with the kernel's own operations: delete_face + add_face would
+    // search for and re-check what an extrusion already knows, at several times the cost.
     auto& m = tm.mesh;
-    m.delete_face(face, false);
+    OpenMesh::HalfedgeHandle h[4];  // the face's half-edges a_j -> a_j+1
+    h[0] = m.halfedge_handle(face);
+    while (m.from_vertex_handle(h[0]) != a[0]) h[0] = m.next_halfedge_handle(h[0]);
+    for (int j = 1; j < 4; ++j) h[j] = m.next_halfedge_handle(h[j - 1]);
+
     Ring b;
+    OpenMesh::HalfedgeHandle up[4], top[4];  // a_j -> b_j and b_j -> b_j+1
     for (int j = 0; j < 4; ++j) b[j] = m.add_vertex(to_om(pos[j]));
-    // The deleted face's half-edges a_j -> a_j+1 are free now; each side quad takes one, so the
-    // orientation carries over and the surface stays closed.
+    for (int j = 0; j < 4; ++j) up[j] = m.new_edge(a[j], b[j]);
+    for (int j = 0; j < 4; ++j) top[j] = m.new_edge(b[j], b[(j + 1) & 3]);
     for (int j = 0; j < 4; ++j) {
-        int k = (j + 1) & 3;
-        sides[j] = m.add_face(a[j], a[k], b[k], b[j]);
+        // Side j = (a_j, a_j+1, b_j+1, b_j): it takes over the face's half-edge a_j -> a_j+1,
+        // so the orientation carries over and the surface stays closed.
+        const int k = (j + 1) & 3;
+        const OpenMesh::HalfedgeHandle loop[4] = {h[j], up[k], m.opposite_halfedge_handle(top[j]),
+                                                  m.opposite_halfedge_handle(up[j])};
+        sides[j] = m.new_face();
+        for (int i = 0; i < 4; ++i) {
+            m.set_next_halfedge_handle(loop[i], loop[(i + 1) & 3]);
+            m.set_face_handle(loop[i], sides[j]);
+        }
+        m.set_halfedge_handle(sides[j], h[j]);
     }
-    m.add_face(b[0], b[1], b[2], b[3]);
+    for (int j = 0; j < 4; ++j) {
+        m.set_next_halfedge_handle(top[j], top[(j + 1) & 3]);
+        m.set_face_handle(top[j], face);
+        m.set_halfedge_handle(b[j], top[j]);
+    }
+    m.set_halfedge_handle(face, top[0]);
     return b;
 }
 
@@ -116,7 +133,7 @@ void grow_limb(TreeMesh& tm, int limb_index, const StepParams& sp, const StopRul
         const double r = L.radii.back();
 
         glm::dvec3 heading = wobble_direction(L.heading, wobble, azimuth);
-        heading = apply_tropism(heading, sp.tropism);
+        heading = apply_tropism(heading, sp.tropism_direction, sp.tropism_strength);
 
         // Limit the turn so the inner side of the new segment cannot fold back through the
         // previous ring: tan(turn) * r < len.
@@ -155,10 +172,8 @@ void grow_limb(TreeMesh& tm, int limb_index, const StepParams& sp, const StopRul
         // Growth never enters the ground (y = 0 in the tree's frame): the limb stops instead.
         if (std::min({pos[0].y, pos[1].y, pos[2].y, pos[3].y}) < 0) return;
 
-        // The top face is the one whose boundary runs ring[0] -> ring[1].
-        FaceHandle top = tm.mesh.face_handle(tm.mesh.find_halfedge(ring[0], ring[1]));
         std::array<FaceHandle, 4> sides;
-        Ring b = extrude_face(tm, top, ring, pos, sides);
+        Ring b = extrude_face(tm, L.top, ring, pos, sides);
 
         glm::dvec3 centroid(0);
         for (const auto& p : pos) centroid += p * 0.25;
@@ -177,6 +192,7 @@ void grow_limb(TreeMesh& tm, int limb_index, const StepParams& sp, const StopRul
 }
 
 QuadMesh to_quad_mesh(const TreeMesh& tm) {
+    // Extrusion never deletes: every face and vertex of the kernel is live.
     const auto& m = tm.mesh;
     QuadMesh q;
     q.positions.reserve(m.n_vertices());
@@ -185,7 +201,6 @@ QuadMesh to_quad_mesh(const TreeMesh& tm) {
     q.quads.reserve(m.n_faces());
     for (size_t i = 0; i < m.n_faces(); ++i) {
         FaceHandle f(static_cast<int>(i));
-        if (m.status(f).deleted()) continue;
         glm::uvec4 quad;
         auto h = m.halfedge_handle(f);
         for (int c = 0; c < 4; ++c) {

@@ -16,10 +16,7 @@ namespace pleinair {
 struct TreeMeshTraits : public OpenMesh::DefaultTraits {
     using Point = OpenMesh::Vec3d;
     using Normal = OpenMesh::Vec3d;
-    VertexAttributes(OpenMesh::Attributes::Status);
-    FaceAttributes(OpenMesh::Attributes::Status);
-    EdgeAttributes(OpenMesh::Attributes::Status);
-    HalfedgeAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::PrevHalfedge);
+    HalfedgeAttributes(OpenMesh::Attributes::PrevHalfedge);
 };
 using ControlMesh = OpenMesh::PolyMesh_ArrayKernelT<TreeMeshTraits>;
 
@@ -33,7 +30,9 @@ struct Limb {
     int parent = -1;   // index of the parent limb
     int parent_segment = -1;
     std::vector<Ring> rings;
-    std::vector<OpenMesh::FaceHandle> sides;  // sides[4 * s + j]: segment s (rings s, s+1), side j
+    std::vector<OpenMesh::FaceHandle> sides;  // sides[4 * s + j]: segment s (rings s, s+1), side j;
+                                              // invalid once a branch has grown from it
+    OpenMesh::FaceHandle top;                 // the cap the next extrusion moves
     std::vector<glm::dvec3> centers;          // ring centroids: the limb's skeleton
     std::vector<double> radii;                // mean distance of a ring's vertices to its centroid
     glm::dvec3 direction{0, 1, 0};            // direction of the last extrusion
@@ -57,7 +56,8 @@ struct StepParams {
     const Param* twist;
     const Param* taper;
     const Param* wobble;
-    Tropism tropism;
+    glm::dvec3 tropism_direction{0, -1, 0};
+    double tropism_strength = 0;  // drawn once per limb
 };
 
 // When a limb stops growing; checked before each step.
@@ -71,12 +71,12 @@ struct StopRule {
 // whatever happens, so a stopped limb never shifts another's stream (each limb has its own).
 void grow_limb(TreeMesh& tm, int limb, const StepParams& sp, const StopRule& stop, Rng& rng);
 
-// Replaces quad `face` (vertices `old_ring` in face order) by four side quads and a top quad
-// through the new vertices `pos`; new vertex j is joined to old vertex j.
+// Extrudes quad `face` (vertices `old_ring` in face order, counter-clockwise from outside): the
+// face moves to the new vertices `pos` and four side quads join old vertex j to new vertex j.
 Ring extrude_face(TreeMesh& tm, OpenMesh::FaceHandle face, const Ring& old_ring,
                   const std::array<glm::dvec3, 4>& pos, std::array<OpenMesh::FaceHandle, 4>& sides);
 
-// The mesh as it stands, deleted faces skipped; vertex i is OpenMesh vertex i (tree-local).
+// The mesh as it stands; vertex i is OpenMesh vertex i, positions tree-local.
 QuadMesh to_quad_mesh(const TreeMesh& tm);
 
 // Small vector helpers shared by the generators (double precision, tree-local frame).
@@ -89,7 +89,7 @@ glm::dvec3 safe_normalize(const glm::dvec3& v, const glm::dvec3& fallback);
 glm::dvec3 wobble_direction(const glm::dvec3& v, double degrees, double turns);
 // The same turn given by the cosine and sine of its angle.
 glm::dvec3 turn_direction(const glm::dvec3& v, double cos_t, double sin_t, double turns);
-glm::dvec3 apply_tropism(const glm::dvec3& heading, const Tropism& t);
+glm::dvec3 apply_tropism(const glm::dvec3& heading, const glm::dvec3& direction, double strength);
 double radians(double degrees);
 
 }  // namespace pleinair

@@ -10,12 +10,12 @@ namespace pleinair {
 BranchParams TreeParams::default_twigs() {
     BranchParams t;
     t.enabled = false;
-    t.min_height = 0.2;
-    t.max_height = 1.0;
-    t.probability = 0.3;
+    t.min_height = {0.2, 0, 0, 1};
+    t.max_height = {1.0, 0, 0, 1};
+    t.probability = {0.3, 0, 0, 1};
     t.angle = {45, 10, 0, 180};
     t.max_length = {1.5, 0.3, 1e-3, 1e5};
-    t.max_steps = 4;
+    t.max_steps = {4, 0, 1, 256, true};
     t.first_length = {0.05, 0.01, 1e-4, 1e3};
     t.first_taper = {0.7, 0.05, 0.01, 1};
     t.extrude_length = {0.4, 0.05, 1e-3, 1e3};
@@ -54,6 +54,9 @@ class Validator {
         path_.push_back(key);
         check("base", p.base, p.lo, p.hi);
         check("var", p.var, 0, std::max(p.hi - p.lo, 0.0));
+        if (p.whole && std::isfinite(p.base) && p.base != std::floor(p.base))
+            problems.push_back(pointer("base") + ": must be a whole number, got " +
+                               format_number(p.base));
         path_.pop_back();
     }
     void number(const char* key, double x, Range r, const char*, const char*) {
@@ -88,10 +91,10 @@ std::vector<std::string> validate(const TreeParams& params) {
     Validator v;
     visit_tree_params(params, v);
     auto cross = [&](const BranchParams& b, const char* name) {
-        if (b.min_height > b.max_height)
-            v.problems.push_back(std::string("/") + name + "/min_height: must not exceed " +
-                                 "max_height (" + format_number(b.max_height) + "), got " +
-                                 format_number(b.min_height));
+        if (b.min_height.base > b.max_height.base)
+            v.problems.push_back(std::string("/") + name + "/min_height/base: must not exceed " +
+                                 "max_height (" + format_number(b.max_height.base) + "), got " +
+                                 format_number(b.min_height.base));
     };
     cross(params.branches, "branches");
     cross(params.twigs, "twigs");

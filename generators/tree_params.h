@@ -3,6 +3,7 @@
 // reference in the README).
 #pragma once
 
+#include <cmath>
 #include <glm/vec3.hpp>
 #include <string>
 #include <vector>
@@ -19,6 +20,7 @@ struct Param {
     double var = 0;
     double lo = 0;
     double hi = 1;
+    bool whole = false;
 };
 
 // Always consumes the same number of draws, so a stream's later numbers do not depend on
@@ -28,18 +30,21 @@ inline double sample(const Param& p, Rng& rng) {
     double x = p.base + p.var * g;
     return x < p.lo ? p.lo : (x > p.hi ? p.hi : x);
 }
+inline int sample_whole(const Param& p, Rng& rng) {
+    return static_cast<int>(std::lround(sample(p, rng)));
+}
 
 // A constant pull on growth: each step's heading becomes normalize(heading + strength * direction).
 // Gravity droops willows; a small upward pull keeps poplars fastigiate.
 struct Tropism {
     glm::dvec3 direction{0, -1, 0};
-    double strength = 0;
+    Param strength{0, 0, 0, 10};
 };
 
 struct TrunkParams {
     Param initial_size{0.8, 0.05, 1e-3, 1e3};
     Param max_height{10, 1, 1e-3, 1e5};
-    int max_steps = 12;
+    Param max_steps{12, 0, 0, 256, true};
     Param extrude_length{1.0, 0.1, 1e-3, 1e3};
     Param twist{0, 4, -360, 360};
     Param taper{0.93, 0.02, 0, 1};
@@ -51,12 +56,12 @@ struct TrunkParams {
 // level) from the branches.
 struct BranchParams {
     bool enabled = true;
-    double min_height = 0.35;
-    double max_height = 0.95;
-    double probability = 0.35;
+    Param min_height{0.35, 0, 0, 1};
+    Param max_height{0.95, 0, 0, 1};
+    Param probability{0.35, 0, 0, 1};
     Param angle{55, 10, 0, 180};
     Param max_length{5, 1, 1e-3, 1e5};
-    int max_steps = 8;
+    Param max_steps{8, 0, 1, 256, true};
     Param first_length{0.08, 0.01, 1e-4, 1e3};
     Param first_taper{0.75, 0.05, 0.01, 1};
     Param extrude_length{0.8, 0.1, 1e-3, 1e3};
@@ -76,14 +81,14 @@ struct FadeParams {
 };
 
 struct LeafParams {
-    int lowest_step_trunk = 4;
-    int trim_top_steps_trunk = 0;
-    int steps_from_center = 1;
-    int steps_from_tip = 0;
-    double probability = 0.75;
+    Param lowest_step_trunk{4, 0, 0, 1024, true};
+    Param trim_top_steps_trunk{0, 0, 0, 1024, true};
+    Param steps_from_center{1, 0, 0, 1024, true};
+    Param steps_from_tip{0, 0, 0, 1024, true};
+    Param probability{0.75, 0, 0, 1};
     Param branch_angle{140, 10, 0, 180};
     Param branching_distance{0.35, 0.05, 1e-4, 1e3};
-    int branching_steps = 7;
+    Param branching_steps{7, 0, 1, 64, true};
     Param branch_dir_wobble{25, 8, 0, 180};
     Tropism tropism;
     FadeParams fade;
@@ -122,19 +127,19 @@ struct Range {
 template <class P, class V>
 void visit_branch_params(P& b, V& v) {
     v.boolean("enabled", b.enabled, "Grow this level at all.");
-    v.number("min_height", b.min_height, Range{0, 1}, "fraction",
-             "Lowest eligible point on the parent, as a fraction of its length (for the trunk: "
-             "of its height).");
-    v.number("max_height", b.max_height, Range{0, 1}, "fraction",
-             "Highest eligible point on the parent, same measure as min_height.");
-    v.number("probability", b.probability, Range{0, 1}, "",
-             "Chance that an eligible side face of the parent grows a branch.");
+    v.param("min_height", b.min_height, "fraction",
+            "Lowest eligible point on the parent, as a fraction of its length (for the trunk: "
+            "of its height). Per tree.");
+    v.param("max_height", b.max_height, "fraction",
+            "Highest eligible point on the parent, same measure as min_height. Per tree.");
+    v.param("probability", b.probability, "",
+            "Chance that an eligible side face of the parent grows a branch. Per tree.");
     v.param("angle", b.angle, "deg",
             "Angle between the parent's axis and the branch's initial heading; 90 is "
             "perpendicular. Per branch.");
     v.param("max_length", b.max_length, "units", "Length at which the branch stops. Per branch.");
-    v.integer("max_steps", b.max_steps, Range{1, 256},
-              "Most extrusions per branch, the short first one included.");
+    v.param("max_steps", b.max_steps, "",
+            "Most extrusions per branch, the short first one included. Per branch.");
     v.param("first_length", b.first_length, "units",
             "Length of the short first extrusion whose face is forced square and planar, so the "
             "subdivided joint stays round (thesis Fig. 12). Per branch.");
@@ -152,8 +157,8 @@ void visit_branch_params(P& b, V& v) {
     v.object("tropism", "A constant pull on the heading (gravity, light).", [&] {
         v.vector("direction", b.tropism.direction, "",
                  "Direction of the pull; normalised when used ([0, -1, 0] is gravity).");
-        v.number("strength", b.tropism.strength, Range{0, 10}, "",
-                 "Weight of the pull added to the heading at each step.");
+        v.param("strength", b.tropism.strength, "",
+                "Weight of the pull added to the heading at each step. Per branch.");
     });
 }
 
@@ -174,8 +179,8 @@ void visit_tree_params(P& p, V& v) {
         v.param("initial_size", t.initial_size, "units", "Edge of the starting cube. Per tree.");
         v.param("max_height", t.max_height, "units",
                 "Height at which the trunk stops growing. Per tree.");
-        v.integer("max_steps", t.max_steps, Range{0, 256},
-                  "Most extrusions of the top face after the cube.");
+        v.param("max_steps", t.max_steps, "",
+                "Most extrusions of the top face after the cube. Per tree.");
         v.param("extrude_length", t.extrude_length, "units", "Length of each extrusion. Per step.");
         v.param("twist", t.twist, "deg",
                 "Rotation of each new face about the growth axis. Per step.");
@@ -197,32 +202,33 @@ void visit_tree_params(P& p, V& v) {
         "IV.3, Fig. 13 and 14).",
         [&] {
             auto& l = p.leaves;
-            v.integer("lowest_step_trunk", l.lowest_step_trunk, Range{0, 1024},
-                      "Trunk rings below this one (0 is the ground) emit no leaves.");
-            v.integer("trim_top_steps_trunk", l.trim_top_steps_trunk, Range{0, 1024},
-                      "This many rings at the top of the trunk emit no leaves.");
-            v.integer("steps_from_center", l.steps_from_center, Range{0, 1024},
-                      "Branch rings closer than this to the branch's base emit no leaves.");
-            v.integer("steps_from_tip", l.steps_from_tip, Range{0, 1024},
-                      "This many rings at a branch's tip emit no leaves.");
-            v.number("probability", l.probability, Range{0, 1}, "",
-                     "Chance that an eligible vertex emits an implied branch of leaves.");
+            v.param("lowest_step_trunk", l.lowest_step_trunk, "",
+                    "Trunk rings below this one (0 is the ground) emit no leaves. Per tree.");
+            v.param("trim_top_steps_trunk", l.trim_top_steps_trunk, "",
+                    "This many rings at the top of the trunk emit no leaves. Per tree.");
+            v.param(
+                "steps_from_center", l.steps_from_center, "",
+                "Branch rings closer than this to the branch's base emit no leaves. Per branch.");
+            v.param("steps_from_tip", l.steps_from_tip, "",
+                    "This many rings at a branch's tip emit no leaves. Per branch.");
+            v.param("probability", l.probability, "",
+                    "Chance that an eligible vertex emits an implied branch of leaves. Per tree.");
             v.param("branch_angle", l.branch_angle, "deg",
                     "Aperture of the cone around the vertex's outward normal in which the implied "
                     "branch starts. Per implied branch.");
             v.param("branching_distance", l.branching_distance, "units",
                     "Distance from one particle to the next along its normal. Per particle.");
-            v.integer("branching_steps", l.branching_steps, Range{1, 64},
-                      "Particles per implied branch.");
+            v.param("branching_steps", l.branching_steps, "",
+                    "Particles per implied branch. Per implied branch.");
             v.param("branch_dir_wobble", l.branch_dir_wobble, "deg",
                     "Random turn of the direction before each particle. Per particle.");
-            v.object("tropism", "A constant pull on implied branches (hanging willow strands).",
-                     [&] {
-                         v.vector("direction", l.tropism.direction, "",
-                                  "Direction of the pull; normalised.");
-                         v.number("strength", l.tropism.strength, Range{0, 10}, "",
-                                  "Weight of the pull added before each particle.");
-                     });
+            v.object(
+                "tropism", "A constant pull on implied branches (hanging willow strands).", [&] {
+                    v.vector("direction", l.tropism.direction, "",
+                             "Direction of the pull; normalised.");
+                    v.param("strength", l.tropism.strength, "",
+                            "Weight of the pull added before each particle. Per implied branch.");
+                });
             v.object(
                 "fade",
                 "Level-of-detail fade thresholds (thesis IV.6), in the tree's distance "

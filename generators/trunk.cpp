@@ -11,6 +11,7 @@ void grow_trunk(TreeMesh& tm, const TreeParams& p, uint64_t seed) {
     const double max_height = sample(p.trunk.max_height, tree_rng) * p.unit;
     const double lean = sample(p.trunk.lean, tree_rng);
     const double lean_azimuth = rand1(tree_rng);
+    const int max_steps = sample_whole(p.trunk.max_steps, tree_rng);
     tm.unit = p.unit;
 
     // Corners at 45 + 90 j degrees in the (z, x) plane: counter-clockwise about +y, so the top
@@ -32,7 +33,7 @@ void grow_trunk(TreeMesh& tm, const TreeParams& p, uint64_t seed) {
         int k = (j + 1) & 3;
         trunk.sides.push_back(m.add_face(a[j], a[k], b[k], b[j]));
     }
-    m.add_face(b[0], b[1], b[2], b[3]);
+    trunk.top = m.add_face(b[0], b[1], b[2], b[3]);
     trunk.rings = {a, b};
     trunk.centers = {glm::dvec3(0), glm::dvec3(0, size, 0)};
     trunk.radii = {r, r};
@@ -46,9 +47,9 @@ void grow_trunk(TreeMesh& tm, const TreeParams& p, uint64_t seed) {
 
     Rng rng = make_rng(seed, Purpose::kTrunk);
     const auto& t = p.trunk;
-    StepParams sp{&t.extrude_length, &t.twist, &t.taper, &t.wobble, Tropism{}};
+    StepParams sp{&t.extrude_length, &t.twist, &t.taper, &t.wobble};
     StopRule stop;
-    stop.max_steps = t.max_steps;
+    stop.max_steps = max_steps;
     stop.max_height = max_height;
     grow_limb(tm, 0, sp, stop, rng);
 }

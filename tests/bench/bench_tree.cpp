@@ -1,10 +1,13 @@
 // Generation time per preset and per stage (trunk, branches, subdivision, leaves, whole tree),
-// and OpenMesh's Catmull-Clark beside the flat one generation uses. Figures: BENCHMARKS.md.
+// and OpenMesh's Catmull-Clark beside the flat one generation uses. Every benchmark cycles
+// through the same eight seeds, so a figure is a family's mean, not one lucky member's.
+// Figures and the command: BENCHMARKS.md.
 #include <benchmark/benchmark.h>
 
 // OpenMesh's subdivider needs a mesh kernel included before it.
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Subdivider/Uniform/CatmullClarkT.hh>
+#include <memory>
 
 #include "generators/branches.h"
 #include "generators/leaves.h"
@@ -18,58 +21,76 @@ using namespace pleinair;
 
 namespace {
 
-constexpr uint64_t kSeed = 7;
 const char* kPresets[] = {"oak", "poplar", "willow", "birch", "pine", "shrub"};
+constexpr int kPresetCount = static_cast<int>(std::size(kPresets));
+constexpr uint64_t kSeeds = 8;
 
-TreeParams preset(int i) { return load_tree_preset(resolve_tree_preset(kPresets[i])); }
+TreeParams preset(const benchmark::State& state) {
+    return load_tree_preset(resolve_tree_preset(kPresets[state.range(0)]));
+}
 
-void label(benchmark::State& state, int i) { state.SetLabel(kPresets[i]); }
+// Mean counts over the seed cycle, as counters beside the time.
+void report(benchmark::State& state, double render_vertices, double leaves) {
+    state.SetLabel(kPresets[state.range(0)]);
+    if (render_vertices > 0) state.counters["render_verts"] = render_vertices / kSeeds;
+    if (leaves > 0) state.counters["leaves"] = leaves / kSeeds;
+}
 
 void BM_Trunk(benchmark::State& state) {
-    TreeParams p = preset(static_cast<int>(state.range(0)));
+    TreeParams p = preset(state);
+    uint64_t seed = 0;
     for (auto _ : state) {
         TreeMesh tm;
-        grow_trunk(tm, p, kSeed);
+        grow_trunk(tm, p, 1 + seed++ % kSeeds);
         benchmark::DoNotOptimize(tm.limbs.data());
     }
-    label(state, static_cast<int>(state.range(0)));
+    report(state, 0, 0);
 }
 
-// Branches and twigs; the trunk they grow from is built with the timer paused.
+// Branches and twigs on prebuilt trunks (copied with the timer paused).
 void BM_Branches(benchmark::State& state) {
-    TreeParams p = preset(static_cast<int>(state.range(0)));
+    TreeParams p = preset(state);
+    std::vector<TreeMesh> trunks(kSeeds);
+    for (uint64_t s = 0; s < kSeeds; ++s) grow_trunk(trunks[s], p, 1 + s);
+    uint64_t seed = 0;
     for (auto _ : state) {
         state.PauseTiming();
-        auto* tm = new TreeMesh;
-        grow_trunk(*tm, p, kSeed);
+        const uint64_t s = seed++ % kSeeds;
+        auto tm = std::make_unique<TreeMesh>(trunks[s]);
         state.ResumeTiming();
-        grow_branches(*tm, p.branches, 1, kSeed);
-        grow_branches(*tm, p.twigs, 2, kSeed);
+        grow_branches(*tm, p.branches, 1, 1 + s);
+        grow_branches(*tm, p.twigs, 2, 1 + s);
         benchmark::DoNotOptimize(tm->limbs.data());
         state.PauseTiming();
-        delete tm;
+        tm.reset();
         state.ResumeTiming();
     }
-    label(state, static_cast<int>(state.range(0)));
+    report(state, 0, 0);
 }
 
-QuadMesh control_of(const TreeParams& p) {
-    TreeMesh tm;
-    grow_skeleton(tm, p, kSeed);
-    return to_quad_mesh(tm);
+std::vector<QuadMesh> controls(const TreeParams& p) {
+    std::vector<QuadMesh> out;
+    for (uint64_t s = 0; s < kSeeds; ++s) {
+        TreeMesh tm;
+        grow_skeleton(tm, p, 1 + s);
+        out.push_back(to_quad_mesh(tm));
+    }
+    return out;
 }
 
 void BM_Subdivide(benchmark::State& state) {
-    TreeParams p = preset(static_cast<int>(state.range(0)));
-    QuadMesh control = control_of(p);
-    size_t verts = 0;
+    TreeParams p = preset(state);
+    auto control = controls(p);
+    double verts = 0;
+    for (uint64_t s = 0; s < kSeeds; ++s)
+        verts +=
+            static_cast<double>(catmull_clark(control[s], p.subdivision_levels).positions.size());
+    uint64_t seed = 0;
     for (auto _ : state) {
-        QuadMesh r = catmull_clark(control, p.subdivision_levels);
-        verts = r.positions.size();
+        QuadMesh r = catmull_clark(control[seed++ % kSeeds], p.subdivision_levels);
         benchmark::DoNotOptimize(r.positions.data());
     }
-    state.counters["render_vertices"] = static_cast<double>(verts);
-    label(state, static_cast<int>(state.range(0)));
+    report(state, verts, 0);
 }
 
 using OmMesh = OpenMesh::PolyMesh_ArrayKernelT<>;
@@ -83,13 +104,14 @@ OmMesh to_openmesh(const QuadMesh& q) {
     return m;
 }
 
-// The same subdivision through OpenMesh's CatmullClarkT (conversion not timed).
+// The same subdivision through OpenMesh's CatmullClarkT (conversion to OpenMesh not timed).
 void BM_SubdivideOpenMesh(benchmark::State& state) {
-    TreeParams p = preset(static_cast<int>(state.range(0)));
-    QuadMesh control = control_of(p);
+    TreeParams p = preset(state);
+    auto control = controls(p);
+    uint64_t seed = 0;
     for (auto _ : state) {
         state.PauseTiming();
-        OmMesh m = to_openmesh(control);
+        OmMesh m = to_openmesh(control[seed++ % kSeeds]);
         OpenMesh::Subdivider::Uniform::CatmullClarkT<OmMesh> cc;
         state.ResumeTiming();
         cc.attach(m);
@@ -97,45 +119,52 @@ void BM_SubdivideOpenMesh(benchmark::State& state) {
         cc.detach();
         benchmark::DoNotOptimize(m.n_vertices());
     }
-    label(state, static_cast<int>(state.range(0)));
+    report(state, 0, 0);
 }
 
 void BM_Leaves(benchmark::State& state) {
-    TreeParams p = preset(static_cast<int>(state.range(0)));
-    TreeMesh tm;
-    grow_skeleton(tm, p, kSeed);
-    size_t n = 0;
-    for (auto _ : state) {
+    TreeParams p = preset(state);
+    std::vector<TreeMesh> skeletons(kSeeds);
+    double leaves = 0;
+    for (uint64_t s = 0; s < kSeeds; ++s) {
+        grow_skeleton(skeletons[s], p, 1 + s);
         glm::dvec3 center;
-        LeafParticles l = emit_leaves(tm, p, kSeed, 0, center);
-        n = l.size();
+        leaves += static_cast<double>(emit_leaves(skeletons[s], p, 1 + s, 0, center).size());
+    }
+    uint64_t seed = 0;
+    for (auto _ : state) {
+        const uint64_t s = seed++ % kSeeds;
+        glm::dvec3 center;
+        LeafParticles l = emit_leaves(skeletons[s], p, 1 + s, 0, center);
         benchmark::DoNotOptimize(l.position.data());
     }
-    state.counters["leaves"] = static_cast<double>(n);
-    label(state, static_cast<int>(state.range(0)));
+    report(state, 0, leaves);
 }
 
+// Everything generate_tree does: trunk, branches, twigs, control mesh, render mesh, low-detail
+// mesh, leaves and skeleton records.
 void BM_Tree(benchmark::State& state) {
-    TreeParams p = preset(static_cast<int>(state.range(0)));
-    size_t verts = 0, leaves = 0;
+    TreeParams p = preset(state);
+    double verts = 0, leaves = 0;
+    for (uint64_t s = 0; s < kSeeds; ++s) {
+        Tree t = generate_tree(p, 1 + s);
+        verts += static_cast<double>(t.render.positions.size());
+        leaves += static_cast<double>(t.leaves.size());
+    }
+    uint64_t seed = 0;
     for (auto _ : state) {
-        Tree t = generate_tree(p, kSeed);
-        verts = t.render.positions.size();
-        leaves = t.leaves.size();
+        Tree t = generate_tree(p, 1 + seed++ % kSeeds);
         benchmark::DoNotOptimize(t.render.positions.data());
     }
-    state.counters["render_vertices"] = static_cast<double>(verts);
-    state.counters["leaves"] = static_cast<double>(leaves);
-    label(state, static_cast<int>(state.range(0)));
+    report(state, verts, leaves);
 }
 
-constexpr int kCount = static_cast<int>(std::size(kPresets));
-BENCHMARK(BM_Trunk)->DenseRange(0, kCount - 1)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_Branches)->DenseRange(0, kCount - 1)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_Subdivide)->DenseRange(0, kCount - 1)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_SubdivideOpenMesh)->DenseRange(0, kCount - 1)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_Leaves)->DenseRange(0, kCount - 1)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_Tree)->DenseRange(0, kCount - 1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Trunk)->DenseRange(0, kPresetCount - 1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Branches)->DenseRange(0, kPresetCount - 1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Subdivide)->DenseRange(0, kPresetCount - 1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SubdivideOpenMesh)->DenseRange(0, kPresetCount - 1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Leaves)->DenseRange(0, kPresetCount - 1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Tree)->DenseRange(0, kPresetCount - 1)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -21,14 +21,14 @@ TreeMesh grow(const TreeParams& p, uint64_t seed) {
 
 TEST(Branches, ProbabilityZeroGrowsNone) {
     TreeParams p = test::preset("oak");
-    p.branches.probability = 0;
+    p.branches.probability.base = 0;
     TreeMesh tm = grow(p, 3);
     EXPECT_EQ(tm.limbs.size(), 1u);
 }
 
 TEST(Branches, ProbabilityOneUsesEveryEligibleFace) {
     TreeParams p = test::preset("oak");
-    p.branches.probability = 1;
+    p.branches.probability.base = 1;
     p.twigs.enabled = false;
     TreeMesh tm = grow(p, 3);
     const Limb& trunk = tm.limbs[0];
@@ -36,14 +36,13 @@ TEST(Branches, ProbabilityOneUsesEveryEligibleFace) {
     int eligible = 0, used = 0;
     for (size_t s = 0; s + 1 < trunk.rings.size(); ++s) {
         double at = 0.5 * (trunk.centers[s].y + trunk.centers[s + 1].y) / top;
-        if (at < p.branches.min_height || at > p.branches.max_height) {
-            for (int j = 0; j < 4; ++j)
-                EXPECT_FALSE(tm.mesh.status(trunk.sides[4 * s + j]).deleted());
+        if (at < p.branches.min_height.base || at > p.branches.max_height.base) {
+            for (int j = 0; j < 4; ++j) EXPECT_TRUE(trunk.sides[4 * s + j].is_valid());
             continue;
         }
         for (int j = 0; j < 4; ++j) {
             ++eligible;
-            used += tm.mesh.status(trunk.sides[4 * s + j]).deleted();
+            used += !trunk.sides[4 * s + j].is_valid();
         }
     }
     EXPECT_GT(eligible, 8);
@@ -90,7 +89,7 @@ TEST(Branches, GravityBendsBranchesDown) {
     p.twigs.enabled = false;
     p.branches.wobble = {0, 0, 0, 90};
     auto mean_rise = [&](double strength) {
-        p.branches.tropism = {{0, -1, 0}, strength};
+        p.branches.tropism = {{0, -1, 0}, {strength, 0, 0, 10}};
         Tree t = generate_tree(p, 8);
         double rise = 0;
         for (size_t i = 1; i < t.branches.size(); ++i)
@@ -104,10 +103,10 @@ TEST(Branches, GravityBendsBranchesDown) {
 TEST(Branches, NothingGrowsIntoTheGround) {
     TreeParams p = test::preset("shrub");
     p.branches.angle = {175, 5, 0, 180};  // pointing down
-    p.branches.tropism = {{0, -1, 0}, 3.0};
-    p.branches.probability = 1;
-    p.branches.min_height = 0;
-    p.leaves.tropism = {{0, -1, 0}, 3.0};
+    p.branches.tropism = {{0, -1, 0}, {3.0, 0, 0, 10}};
+    p.branches.probability.base = 1;
+    p.branches.min_height.base = 0;
+    p.leaves.tropism = {{0, -1, 0}, {3.0, 0, 0, 10}};
     for (uint64_t seed : {1, 2, 3}) {
         Tree t = generate_tree(p, seed);
         for (const auto& v : t.control.positions) ASSERT_GE(v.y, 0.0f);
@@ -129,7 +128,7 @@ std::map<uint64_t, std::vector<glm::dvec3>> limbs_by_key(const TreeMesh& tm, int
 TEST(Branches, AddingBranchesLeavesTheOthersUnchanged) {
     TreeParams p = test::preset("oak");
     auto before = limbs_by_key(grow(p, 21), 1);
-    p.branches.probability = 0.6;
+    p.branches.probability.base = 0.6;
     auto after = limbs_by_key(grow(p, 21), 1);
     EXPECT_GT(after.size(), before.size());
     for (const auto& [key, centers] : before) {

@@ -57,38 +57,40 @@ TEST(Leaves, NeighbouringParticlesGetDistantLabels) {
 
 TEST(Leaves, EveryEligibleVertexEmitsAFullImpliedBranchAtProbabilityOne) {
     TreeParams p = test::preset("poplar");
-    p.leaves.probability = 1;
-    p.leaves.tropism = {{0, 1, 0}, 0.5};  // upward: no strand is cut short by the ground
+    p.leaves.probability.base = 1;
+    p.leaves.tropism = {{0, 1, 0},
+                        {0.5, 0, 0, 10}};  // upward: no strand is cut short by the ground
     TreeMesh tm;
     grow_skeleton(tm, p, 6);
     size_t eligible = 0;
     for (const Limb& L : tm.limbs) {
         int last = int(L.rings.size()) - 1;
         for (int r = 0; r <= last; ++r) {
-            bool ok = L.level == 0 ? (r >= p.leaves.lowest_step_trunk &&
-                                      r <= last - p.leaves.trim_top_steps_trunk)
-                                   : (r >= std::max(1, p.leaves.steps_from_center) &&
-                                      r <= last - p.leaves.steps_from_tip);
+            const auto& l = p.leaves;  // the preset's values have no variance
+            bool ok = L.level == 0 ? (r >= l.lowest_step_trunk.base &&
+                                      r <= last - l.trim_top_steps_trunk.base)
+                                   : (r >= std::max(1.0, l.steps_from_center.base) &&
+                                      r <= last - l.steps_from_tip.base);
             eligible += ok ? 4 : 0;
         }
     }
     glm::dvec3 center;
     LeafParticles l = emit_leaves(tm, p, 6, 0, center);
-    EXPECT_EQ(l.size(), eligible * size_t(p.leaves.branching_steps));
-    p.leaves.probability = 0;
+    EXPECT_EQ(l.size(), eligible * size_t(p.leaves.branching_steps.base));
+    p.leaves.probability.base = 0;
     EXPECT_EQ(emit_leaves(tm, p, 6, 0, center).size(), 0u);
     EXPECT_EQ(center, tm.limbs[0].centers.back());  // no canopy: the top of the trunk
 }
 
 TEST(Leaves, ParticlesFollowTheirImpliedBranch) {
     TreeParams p = test::preset("birch");
-    p.leaves.probability = 1;
+    p.leaves.probability.base = 1;
     p.leaves.branch_dir_wobble = {0, 0, 0, 180};
     p.leaves.branching_distance = {0.3, 0, 1e-4, 1e3};
-    p.leaves.tropism.strength = 0;
+    p.leaves.tropism.strength.base = 0;
     Tree t = generate_tree(p, 3);
     const auto& l = t.leaves;
-    const size_t k = size_t(p.leaves.branching_steps);
+    const size_t k = size_t(p.leaves.branching_steps.base);
     ASSERT_EQ(l.size() % k, 0u);
     for (size_t i = 0; i < l.size(); ++i) {
         if (i % k == 0) continue;

@@ -17,10 +17,10 @@ TreeParams plain_trunk() {
     TreeParams p;
     p.branches.enabled = false;
     p.twigs.enabled = false;
-    p.leaves.probability = 0;
+    p.leaves.probability.base = 0;
     p.trunk.initial_size = {1.0, 0, 1e-3, 1e3};
     p.trunk.max_height = {5.5, 0, 1e-3, 1e5};
-    p.trunk.max_steps = 20;
+    p.trunk.max_steps.base = 20;
     p.trunk.extrude_length = {1.0, 0, 1e-3, 1e3};
     p.trunk.twist = {0, 0, -360, 360};
     p.trunk.taper = {0.9, 0, 0, 1};
@@ -37,7 +37,7 @@ std::vector<glm::vec3> sorted(std::vector<glm::vec3> v) {
 
 TEST(Trunk, StartsFromACubeOfTheInitialSize) {
     TreeParams p = plain_trunk();
-    p.trunk.max_steps = 0;
+    p.trunk.max_steps.base = 0;
     Tree t = generate_tree(p, 1);
     EXPECT_EQ(t.control.positions.size(), 8u);
     EXPECT_EQ(t.control.quads.size(), 6u);
@@ -58,7 +58,7 @@ TEST(Trunk, StopsAtMaxHeightOrMaxSteps) {
     // Centres at y = 0, 1, 2, ...: growth stops at the first ring at or above 5.5.
     ASSERT_EQ(rings.size(), 7u);
     EXPECT_NEAR(rings.back().y, 6.0f, 1e-5f);
-    p.trunk.max_steps = 3;
+    p.trunk.max_steps.base = 3;
     EXPECT_EQ(generate_tree(p, 1).branches[0].ring_centers.size(), 5u);  // cube's two + 3
 }
 

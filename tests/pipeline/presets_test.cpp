@@ -63,11 +63,14 @@ TEST(Presets, UnknownKeysAreErrorsWithASuggestion) {
 
 TEST(Presets, WrongTypesSayWhatWasExpected) {
     EXPECT_EQ(problems_of(R"({"trunk": {"max_steps": "ten"}})"),
-              std::vector<std::string>{
-                  "presets/trees/oak.json: /trunk/max_steps: expected an integer, got \"ten\""});
+              std::vector<std::string>{"presets/trees/oak.json: /trunk/max_steps: expected a "
+                                       "number or {\"base\": b, \"var\": v}, got \"ten\""});
     EXPECT_EQ(problems_of(R"({"trunk": {"max_steps": 2.5}})"),
               std::vector<std::string>{
-                  "presets/trees/oak.json: /trunk/max_steps: expected an integer, got 2.5"});
+                  "presets/trees/oak.json: /trunk/max_steps: must be a whole number, got 2.5"});
+    EXPECT_EQ(problems_of(R"({"subdivision_levels": 1.5})"),
+              std::vector<std::string>{
+                  "presets/trees/oak.json: /subdivision_levels: expected an integer, got 1.5"});
     EXPECT_EQ(
         problems_of(R"({"trunk": 3})"),
         std::vector<std::string>{"presets/trees/oak.json: /trunk: expected an object, got 3"});
@@ -138,7 +141,7 @@ TEST(Presets, ReadmeReferenceMatchesTheKeyTable) {
     std::string table = tree_params_reference();
     EXPECT_NE(readme.find(table), std::string::npos)
         << "README.md's preset reference is stale; regenerate it with "
-           "`build/pleinair presets --reference`";
+           "`make reference`";
 }
 
 }  // namespace
