@@ -5,6 +5,7 @@
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <nlohmann/json.hpp>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 
@@ -52,6 +53,10 @@ std::string write_to_string(const Mesh& m, const char* ext, OpenMesh::IO::Option
     }();
     (void)quiet;
     std::ostringstream out(std::ios::binary);
+    // OpenMesh's writers are process-wide singletons that keep per-call state in mutable
+    // members (OBJWriter's path_ and material lists, PLYWriter's options_): one call at a time.
+    static std::mutex writer_mutex;
+    std::lock_guard<std::mutex> lock(writer_mutex);
     // 9 significant digits: floats round-trip through OBJ text.
     if (!OpenMesh::IO::write_mesh(m, out, ext, opt, 9))
         throw std::runtime_error(std::string("OpenMesh could not write ") + ext);
