@@ -24,20 +24,20 @@ BranchParams TreeParams::default_twigs() {
     return t;
 }
 
-namespace {
-
 std::string format_number(double x) {
     std::ostringstream s;
     s << x;
     return s.str();
 }
 
-std::string range_text(double lo, double hi) {
+std::string format_range(double lo, double hi) {
     // Appends rather than "[" + string: GCC 12 warns falsely (-Wrestrict) on the latter.
     std::string s("[");
     s.append(format_number(lo)).append(", ").append(format_number(hi)).append("]");
     return s;
 }
+
+namespace {
 
 // Visits the key table and records every value outside its range, with its JSON pointer.
 class Validator {
@@ -80,7 +80,7 @@ class Validator {
     }
     void check(const char* key, double x, double lo, double hi) {
         if (!(x >= lo && x <= hi))  // also rejects NaN
-            problems.push_back(pointer(key) + ": must be in " + range_text(lo, hi) + ", got " +
+            problems.push_back(pointer(key) + ": must be in " + format_range(lo, hi) + ", got " +
                                format_number(x));
     }
 };

@@ -260,4 +260,9 @@ void visit_tree_params(P& p, V& v) {
 // Every problem with the values, one line each: "/trunk/taper/base: must be in [0, 1], got 1.7".
 std::vector<std::string> validate(const TreeParams& params);
 
+// The one number format of messages and the reference (shortest %g-like), so they agree.
+std::string format_number(double x);
+// "[lo, hi]" in that format.
+std::string format_range(double lo, double hi);
+
 }  // namespace pleinair

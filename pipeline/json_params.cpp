@@ -23,20 +23,6 @@ std::string describe(const json& v) {
     return s;
 }
 
-// The validator's number format (shortest %g-like), so the reference and the messages agree.
-std::string fmt(double x) {
-    std::ostringstream s;
-    s << x;
-    return s.str();
-}
-
-// Appends rather than "[" + string: GCC 12 warns falsely (-Wrestrict) on the latter.
-std::string interval(double lo, double hi) {
-    std::string s("[");
-    s.append(fmt(lo)).append(", ").append(fmt(hi)).append("]");
-    return s;
-}
-
 size_t edit_distance(const std::string& a, const std::string& b) {
     std::vector<size_t> row(b.size() + 1);
     for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
@@ -107,7 +93,7 @@ class Reader {
             return fail(key, "expected an integer, got " + describe(*v));
         // Checked here, not by the validator: an int cannot hold every JSON integer.
         if (d < r.lo || d > r.hi)
-            return fail(key, "must be in " + interval(r.lo, r.hi) + ", got " + describe(*v));
+            return fail(key, "must be in " + format_range(r.lo, r.hi) + ", got " + describe(*v));
         x = static_cast<int>(d);
     }
     void boolean(const char* key, bool& x, const char*) {
@@ -207,21 +193,23 @@ class Documenter {
         path_.pop_back();
     }
     void param(const char* key, const Param& p, const char* unit, const char* doc) {
-        row(here() + "/" + key, "{\"base\": " + fmt(p.base) + ", \"var\": " + fmt(p.var) + "}",
-            interval(p.lo, p.hi), unit, doc);
+        row(here() + "/" + key,
+            "{\"base\": " + format_number(p.base) + ", \"var\": " + format_number(p.var) + "}",
+            format_range(p.lo, p.hi), unit, doc);
     }
     void number(const char* key, double x, Range r, const char* unit, const char* doc) {
-        row(here() + "/" + key, fmt(x), interval(r.lo, r.hi), unit, doc);
+        row(here() + "/" + key, format_number(x), format_range(r.lo, r.hi), unit, doc);
     }
     void integer(const char* key, int x, Range r, const char* doc) {
-        row(here() + "/" + key, std::to_string(x), interval(r.lo, r.hi), "", doc);
+        row(here() + "/" + key, std::to_string(x), format_range(r.lo, r.hi), "", doc);
     }
     void boolean(const char* key, bool x, const char* doc) {
         row(here() + "/" + key, x ? "true" : "false", "", "", doc);
     }
     void vector(const char* key, const glm::dvec3& x, const char* unit, const char* doc) {
-        row(here() + "/" + key, "[" + fmt(x.x) + ", " + fmt(x.y) + ", " + fmt(x.z) + "]", "", unit,
-            doc);
+        row(here() + "/" + key,
+            "[" + format_number(x.x) + ", " + format_number(x.y) + ", " + format_number(x.z) + "]",
+            "", unit, doc);
     }
     void text(const char* key, const std::string& x, const char* doc) {
         row(here() + "/" + key, json(x).dump(), "", "", doc);
