@@ -9,7 +9,7 @@ DEPS := build-essential cmake ninja-build libopenmesh-dev libglm-dev libopenimag
         libgtest-dev libbenchmark-dev libhwy-dev
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps build render test test-sanitize bench format reference clean
+.PHONY: all deps build render test test-sanitize bench format reference golden clean
 
 all: build
 
@@ -28,10 +28,9 @@ build: deps
 	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release
 	cmake --build $(BUILD) -j $(JOBS)
 
-# Until the painter lands: grow the default family (six oaks) into out/.
+# Paints the default scene into out/grove.png and prints the frame's plan.
 render: build
-	$(BUILD)/pleinair family --preset oak --count 6 --seed 1 -o out/oak
-	$(BUILD)/pleinair tree --preset oak --seed 1 --stats
+	$(BUILD)/pleinair render grove -o out/grove.png --explain
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
@@ -46,12 +45,21 @@ test-sanitize: deps
 bench: build
 	$(BUILD)/tests/pleinair_bench
 
-# Regenerates the preset key reference in README.md from the key table in the code.
+# Regenerates the key references in README.md (trees, shaders, scenes) from the key tables in
+# the code, between their BEGIN/END markers.
 reference: build
-	$(BUILD)/pleinair presets --reference > $(BUILD)/reference.md
-	awk -v ref=$(BUILD)/reference.md '/<!-- END tree preset reference/ {skip=0} \
-	    !skip {print} /<!-- BEGIN tree preset reference/ {while ((getline l < ref) > 0) print l; skip=1}' \
-	    README.md > $(BUILD)/README.md && mv $(BUILD)/README.md README.md
+	for kind in trees shaders scenes; do \
+	    $(BUILD)/pleinair presets --reference $$kind > $(BUILD)/reference.md && \
+	    awk -v ref=$(BUILD)/reference.md -v kind=$$kind \
+	        '$$0 ~ "<!-- END " kind " reference" {skip=0} !skip {print} \
+	         $$0 ~ "<!-- BEGIN " kind " reference" {while ((getline l < ref) > 0) print l; skip=1}' \
+	        README.md > $(BUILD)/README.md && mv $(BUILD)/README.md README.md || exit 1; \
+	done
+
+# Repaints every golden image's reference (tests/golden/README.md): look at them before
+# committing.
+golden: build
+	for d in tests/golden/*/; do $(BUILD)/pleinair render $$d/scene.json -o $$d/reference.png; done
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

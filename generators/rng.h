@@ -33,6 +33,7 @@ enum class Purpose : uint64_t {
     kLeafGrow = 6,
     kFamily = 7,    // member seeds of a family
     kLeafLimb = 8,  // per-limb leaf eligibility
+    kBark = 9,      // bark stroke particles, per limb segment
 };
 
 // PCG32 (O'Neill 2014): small state, good statistics, and fully specified, so every platform

@@ -50,6 +50,7 @@ Tree generate_tree(const TreeParams& params, uint64_t seed, const TreeOptions& o
         const Limb& L = tm.limbs[i];
         BranchInfo b;
         b.id = static_cast<uint32_t>(i);
+        b.key = L.key;
         b.level = L.level;
         b.parent = L.parent;
         b.start = glm::vec3(L.centers.front());

@@ -17,6 +17,7 @@ namespace pleinair {
 // One limb of the skeleton, for the stages after generation (leaf LOD, bark strokes).
 struct BranchInfo {
     uint32_t id = 0;        // index in Tree::branches; 0 is the trunk
+    uint64_t key = 0;       // structural key (parent, segment, side): keys later random streams
     int level = 0;          // 0 trunk, 1 branch, 2 twig
     int parent = -1;        // id of the parent, -1 for the trunk
     glm::vec3 start{0.0f};  // centre of the base ring (tree-local)

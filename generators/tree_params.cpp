@@ -37,6 +37,13 @@ std::string format_range(double lo, double hi) {
     return s;
 }
 
+std::string format_vector(double x, double y, double z) {
+    std::string s("[");
+    s.append(format_number(x)).append(", ").append(format_number(y)).append(", ");
+    s.append(format_number(z)).append("]");
+    return s;
+}
+
 namespace {
 
 // Visits the key table and records every value outside its range, with its JSON pointer.

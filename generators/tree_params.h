@@ -264,5 +264,7 @@ std::vector<std::string> validate(const TreeParams& params);
 std::string format_number(double x);
 // "[lo, hi]" in that format.
 std::string format_range(double lo, double hi);
+// "[x, y, z]" in that format.
+std::string format_vector(double x, double y, double z);
 
 }  // namespace pleinair

@@ -19,40 +19,48 @@ fs::path preset_root() {
     return PLEINAIR_PRESET_DIR;
 }
 
-namespace {
-std::vector<std::string> preset_names() {
+std::vector<std::string> preset_names(const std::string& kind) {
     std::vector<std::string> names;
     std::error_code ec;
-    for (const auto& e : fs::directory_iterator(preset_root() / "trees", ec))
+    for (const auto& e : fs::directory_iterator(preset_root() / kind, ec))
         if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
     std::sort(names.begin(), names.end());
     return names;
 }
-}  // namespace
 
-fs::path resolve_tree_preset(const std::string& s) {
+fs::path resolve_preset(const std::string& kind, const std::string& s, const std::string& source,
+                        const std::string& pointer) {
     if (s.find('/') != std::string::npos || s.ends_with(".json")) return s;
-    fs::path file = preset_root() / "trees" / (s + ".json");
+    fs::path file = preset_root() / kind / (s + ".json");
     if (fs::is_regular_file(file)) return file;
     std::string available;
-    for (const auto& n : preset_names()) available += (available.empty() ? "" : ", ") + n;
-    throw InputError("--preset", "",
-                     "no tree preset \"" + s + "\" in " + (preset_root() / "trees").string() +
+    for (const auto& n : preset_names(kind)) available += (available.empty() ? "" : ", ") + n;
+    std::string what = kind == "trees" ? "tree" : kind.substr(0, kind.size() - 1);
+    throw InputError(source, pointer,
+                     "no " + what + " preset \"" + s + "\" in " + (preset_root() / kind).string() +
                          " (available: " + available + ")");
 }
 
-TreeParams load_tree_preset(const fs::path& file, const std::vector<std::string>& overrides) {
+fs::path resolve_tree_preset(const std::string& s) {
+    return resolve_preset("trees", s, "--preset");
+}
+
+std::string read_input_file(const fs::path& file) {
     std::ifstream in(file, std::ios::binary);
     if (!in || fs::is_directory(file))
         throw InputError(file.string(), "", "cannot read the file (missing or not a file)");
     std::ostringstream text;
     text << in.rdbuf();
-    return parse_tree_params(text.str(), file.string(), overrides);
+    return text.str();
+}
+
+TreeParams load_tree_preset(const fs::path& file, const std::vector<std::string>& overrides) {
+    return parse_tree_params(read_input_file(file), file.string(), overrides);
 }
 
 std::vector<PresetInfo> list_tree_presets() {
     std::vector<PresetInfo> out;
-    for (const auto& name : preset_names()) {
+    for (const auto& name : preset_names("trees")) {
         fs::path file = preset_root() / "trees" / (name + ".json");
         TreeParams p = load_tree_preset(file);
         out.push_back({name, p.description, file});

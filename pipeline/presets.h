@@ -19,6 +19,17 @@ struct PresetInfo {
     std::filesystem::path file;
 };
 
+// Names of the presets of one kind ("trees", "shaders", "palettes", "scenes"), sorted.
+std::vector<std::string> preset_names(const std::string& kind);
+
+// A path (contains '/' or ends in .json) is returned as is; a bare name is looked up in
+// preset_root()/kind. Throws InputError(source, pointer, ...) naming what is available.
+std::filesystem::path resolve_preset(const std::string& kind, const std::string& name_or_file,
+                                     const std::string& source, const std::string& pointer = "");
+
+// The whole file, or InputError naming it.
+std::string read_input_file(const std::filesystem::path& file);
+
 // Shipped tree presets, sorted by name. Throws InputError if one does not load.
 std::vector<PresetInfo> list_tree_presets();
 

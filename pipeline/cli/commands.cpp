@@ -1,6 +1,8 @@
 // The tree, family and presets commands.
 #include "pipeline/cli/commands.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -8,12 +10,13 @@
 #include <glm/common.hpp>
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <tbb/parallel_for.h>
 
 #include "pipeline/error.h"
 #include "pipeline/family.h"
 #include "pipeline/json_params.h"
 #include "pipeline/presets.h"
+#include "pipeline/scene.h"
+#include "pipeline/shader_io.h"
 #include "pipeline/tree_io.h"
 #include "pipeline/write_file.h"
 
@@ -125,12 +128,22 @@ int run_family(const FamilyCommand& cmd) {
 }
 
 int run_presets(const PresetsCommand& cmd) {
-    if (cmd.reference) {
-        std::cout << tree_params_reference();
+    if (!cmd.reference.empty()) {
+        std::cout << (cmd.reference == "trees"     ? tree_params_reference()
+                      : cmd.reference == "shaders" ? stroke_shader_reference()
+                                                   : scene_reference());
         return 0;
     }
-    for (const auto& p : list_tree_presets()) {
-        std::printf("tree  %-10s %s\n", p.name.c_str(), p.description.c_str());
+    for (const auto& p : list_tree_presets())
+        std::printf("tree     %-16s %s\n", p.name.c_str(), p.description.c_str());
+    for (const auto& name : preset_names("shaders"))
+        std::printf("shader   %-16s %s\n", name.c_str(),
+                    load_shader_preset(name).description.c_str());
+    for (const auto& name : preset_names("palettes"))
+        std::printf("palette  %-16s %s\n", name.c_str(), load_palette(name).description.c_str());
+    for (const auto& name : preset_names("scenes")) {
+        auto file = resolve_preset("scenes", name, "presets");
+        std::printf("scene    %-16s %s\n", name.c_str(), load_scene(file).description.c_str());
     }
     return 0;
 }

@@ -31,13 +31,22 @@ struct FamilyCommand {
     std::string save_preset;
 };
 
+struct RenderCommand {
+    std::string scene;             // name in presets/scenes or a JSON file
+    std::string out;               // image path: .png, .tif, .exr
+    bool explain = false;          // print the frame's plan, pass times and counts
+    bool aovs = false;             // EXR depth, object id, alpha and lightness channels
+    std::vector<std::string> set;  // "POINTER=VALUE" overrides of the scene
+};
+
 struct PresetsCommand {
-    bool reference = false;  // print the Markdown reference of every key instead
+    std::string reference;  // "trees", "shaders" or "scenes": print that key reference instead
 };
 
 // Each returns the process exit code; InputError and std::runtime_error propagate to main.
 int run_tree(const TreeCommand& cmd);
 int run_family(const FamilyCommand& cmd);
 int run_presets(const PresetsCommand& cmd);
+int run_render(const RenderCommand& cmd);
 
 }  // namespace pleinair

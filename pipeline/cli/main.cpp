@@ -51,9 +51,21 @@ int main(int argc, char** argv) {
     f->add_option("--save-preset", family.save_preset,
                   "Write the fully resolved parameters to FILE");
 
+    RenderCommand render;
+    auto* r = app.add_subcommand("render", "Paint a scene into an image (PNG, TIFF or EXR)");
+    r->add_option("scene", render.scene, "Scene name (presets/scenes) or JSON file")->required();
+    r->add_option("-o,--out", render.out, "Image to write: .png (8-bit sRGB), .tif, .exr (linear)")
+        ->required();
+    r->add_flag("--explain", render.explain,
+                "Print the frame's plan: passes run or skipped and why, times, counts");
+    r->add_flag("--aovs", render.aovs, "Add depth, object id, alpha, lightness channels (EXR)");
+    r->add_option("--set", render.set, "Override a scene key: POINTER=VALUE, e.g. /camera/fov=30");
+
     PresetsCommand presets;
     auto* p = app.add_subcommand("presets", "List the shipped presets, one line each");
-    p->add_flag("--reference", presets.reference, "Print the reference table of every preset key");
+    p->add_option("--reference", presets.reference,
+                  "Print the Markdown reference of every key of one kind of file")
+        ->check(CLI::IsMember({"trees", "shaders", "scenes"}));
 
     try {
         app.parse(argc, argv);
@@ -75,6 +87,7 @@ int main(int argc, char** argv) {
         if (*t) return run_tree(tree);
         if (*f) return run_family(family);
         if (*p) return run_presets(presets);
+        if (*r) return run_render(render);
     } catch (const InputError& e) {
         std::cerr << e.what() << "\n";
         return 2;

@@ -7,6 +7,8 @@
 #include "generators/tree.h"
 #include "pipeline/error.h"
 #include "pipeline/json_params.h"
+#include "pipeline/scene.h"
+#include "pipeline/shader_io.h"
 #include "test_util.h"
 
 namespace pleinair {
@@ -138,10 +140,10 @@ TEST(Presets, SavedPresetLoadsBackToTheSameTree) {
 
 TEST(Presets, ReadmeReferenceMatchesTheKeyTable) {
     std::string readme = test::read_file(test::source_dir() / "README.md");
-    std::string table = tree_params_reference();
-    EXPECT_NE(readme.find(table), std::string::npos)
-        << "README.md's preset reference is stale; regenerate it with "
-           "`make reference`";
+    for (const std::string& table :
+         {tree_params_reference(), stroke_shader_reference(), scene_reference()})
+        EXPECT_NE(readme.find(table), std::string::npos)
+            << "README.md's key reference is stale; regenerate it with `make reference`";
 }
 
 }  // namespace

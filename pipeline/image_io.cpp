@@ -1,0 +1,119 @@
+// OpenImageIO writers with the atomic rename; the only file that includes OpenImageIO.
+#include "pipeline/image_io.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <system_error>
+
+#include "pipeline/error.h"
+#include "shading/color.h"
+
+namespace pleinair {
+
+namespace fs = std::filesystem;
+
+namespace {
+std::string lower_ext(const fs::path& p) {
+    std::string e = p.extension().string();
+    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
+    return e;
+}
+
+// Linear premultiplied over an opaque background: the colour is the premultiplied value.
+float channel(const Frame& f, size_t i, int c) {
+    float v = f.rgba[4 * i + c];
+    return std::isfinite(v) ? v : 0.0f;
+}
+}  // namespace
+
+bool is_image_path(const fs::path& path) {
+    std::string e = lower_ext(path);
+    return e == ".png" || e == ".tif" || e == ".tiff" || e == ".exr";
+}
+
+std::vector<uint8_t> frame_srgb8(const Frame& f) {
+    const size_t n = static_cast<size_t>(f.width) * f.height;
+    std::vector<uint8_t> out(3 * n);
+    for (size_t i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c)
+            out[3 * i + c] =
+                static_cast<uint8_t>(std::lround(255.0f * linear_to_srgb(channel(f, i, c))));
+    return out;
+}
+
+void write_frame(const fs::path& path, const Frame& f) {
+    const std::string ext = lower_ext(path);
+    if (!is_image_path(path))
+        throw InputError("-o", "",
+                         "cannot write \"" + path.string() +
+                             "\": the extension must be .png, .tif, .tiff or .exr");
+    const size_t n = static_cast<size_t>(f.width) * f.height;
+    OIIO::ImageSpec spec;
+    std::vector<float> linear;
+    std::vector<uint16_t> u16;
+    std::vector<uint8_t> u8;
+    const void* data = nullptr;
+    OIIO::TypeDesc in_type;
+    if (ext == ".exr") {
+        std::vector<std::string> names = {"R", "G", "B", "A"};
+        if (f.has_aovs) names.insert(names.end(), {"Z", "object_id", "stroke_alpha", "lightness"});
+        const int nc = static_cast<int>(names.size());
+        spec = OIIO::ImageSpec(f.width, f.height, nc, OIIO::TypeDesc::HALF);
+        spec.channelnames = names;
+        spec.alpha_channel = 3;
+        if (f.has_aovs) spec.z_channel = 4;
+        spec.attribute("compression", "zip");
+        linear.resize(n * nc);
+        for (size_t i = 0; i < n; ++i) {
+            for (int c = 0; c < 4; ++c) linear[i * nc + c] = channel(f, i, c);
+            if (f.has_aovs) {
+                linear[i * nc + 4] = f.depth[i];
+                linear[i * nc + 5] = f.object_id[i];
+                linear[i * nc + 6] = f.alpha[i];
+                linear[i * nc + 7] = f.lightness[i];
+            }
+        }
+        data = linear.data();
+        in_type = OIIO::TypeDesc::FLOAT;
+    } else if (ext == ".png") {
+        spec = OIIO::ImageSpec(f.width, f.height, 3, OIIO::TypeDesc::UINT8);
+        u8 = frame_srgb8(f);
+        data = u8.data();
+        in_type = OIIO::TypeDesc::UINT8;
+    } else {
+        spec = OIIO::ImageSpec(f.width, f.height, 3, OIIO::TypeDesc::UINT16);
+        u16.resize(3 * n);
+        for (size_t i = 0; i < n; ++i)
+            for (int c = 0; c < 3; ++c)
+                u16[3 * i + c] =
+                    static_cast<uint16_t>(std::lround(65535.0f * linear_to_srgb(channel(f, i, c))));
+        data = u16.data();
+        in_type = OIIO::TypeDesc::UINT16;
+        spec.attribute("compression", "zip");
+    }
+    if (ext != ".exr") spec.attribute("oiio:ColorSpace", "sRGB");
+    spec.attribute("Software", "pleinair");
+
+    // The temporary keeps the extension so OpenImageIO picks the same format.
+    fs::path tmp = path;
+    std::string tmp_name = ".";
+    tmp_name.append(path.stem().string()).append(".partial").append(path.extension().string());
+    tmp.replace_filename(tmp_name);
+    auto out = OIIO::ImageOutput::create(tmp.string());
+    bool ok =
+        out && out->open(tmp.string(), spec) && out->write_image(in_type, data) && out->close();
+    std::string err = out ? out->geterror() : OIIO::geterror();
+    out.reset();
+    std::error_code ec;
+    if (ok) fs::rename(tmp, path, ec);
+    if (!ok || ec) {
+        fs::remove(tmp, ec);
+        throw std::runtime_error("cannot write " + path.string() + ": " +
+                                 (err.empty() ? "rename failed" : err));
+    }
+}
+
+}  // namespace pleinair

@@ -1,0 +1,23 @@
+// Frame output through OpenImageIO, format from the extension: PNG (8-bit sRGB), TIFF (16-bit
+// sRGB), EXR (half float, linear, with AOV channels when the frame has them). Written to a
+// temporary name beside the target and renamed when complete.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "pipeline/paint.h"
+
+namespace pleinair {
+
+// True for .png, .tif, .tiff and .exr (any case).
+bool is_image_path(const std::filesystem::path& path);
+
+// Throws InputError for an unsupported extension (before anything is written) and
+// std::runtime_error if writing fails; no partial file remains either way.
+void write_frame(const std::filesystem::path& path, const Frame& frame);
+
+// 8-bit sRGB RGB bytes of the frame (what a PNG holds), for tests and contact sheets.
+std::vector<uint8_t> frame_srgb8(const Frame& frame);
+
+}  // namespace pleinair

@@ -1,0 +1,348 @@
+// The JSON side of the key-table visitors (Reader, Writer, Documenter) shared by every preset
+// and scene parser. Internal to pipeline/*.cpp: it includes nlohmann/json, so no public header
+// may include it.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "generators/tree_params.h"
+#include "pipeline/error.h"
+
+namespace pleinair::json_detail {
+
+using json = nlohmann::json;
+using ordered_json = nlohmann::ordered_json;
+
+inline std::string describe(const json& v) {
+    std::string s = v.dump();
+    if (s.size() > 40) s = s.substr(0, 37) + "...";
+    return s;
+}
+
+// [r, g, b] with each in 0..1, or "#rrggbb"; false for anything else.
+inline bool parse_color(const json& v, glm::vec3& out) {
+    if (v.is_string()) {
+        const std::string& t = v.get_ref<const std::string&>();
+        if (t.size() != 7 || t[0] != '#') return false;
+        unsigned rgb[3];
+        for (int i = 0; i < 3; ++i) {
+            unsigned x = 0;
+            for (int j = 0; j < 2; ++j) {
+                char c = t[1 + 2 * i + j];
+                int d = c >= '0' && c <= '9'   ? c - '0'
+                        : c >= 'a' && c <= 'f' ? c - 'a' + 10
+                        : c >= 'A' && c <= 'F' ? c - 'A' + 10
+                                               : -1;
+                if (d < 0) return false;
+                x = x * 16 + static_cast<unsigned>(d);
+            }
+            rgb[i] = x;
+        }
+        out = glm::vec3(rgb[0], rgb[1], rgb[2]) / 255.0f;
+        return true;
+    }
+    if (!v.is_array() || v.size() != 3) return false;
+    glm::vec3 c;
+    for (int i = 0; i < 3; ++i) {
+        if (!v[i].is_number()) return false;
+        double d = v[i].get<double>();
+        if (!(d >= 0.0 && d <= 1.0)) return false;
+        c[i] = static_cast<float>(d);
+    }
+    out = c;
+    return true;
+}
+
+inline size_t edit_distance(const std::string& a, const std::string& b) {
+    std::vector<size_t> row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        size_t diag = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1])});
+            diag = up;
+        }
+    }
+    return row[b.size()];
+}
+
+// Reads the keys the table asks for; what the table never asked for is an unknown key.
+class Reader {
+  public:
+    // `prefix` is the JSON pointer of `root` in its file, for objects inside arrays.
+    Reader(const json& root, std::vector<Problem>& problems, std::set<std::string>& plain_params,
+           std::string prefix = "")
+        : problems_(problems), plain_(plain_params) {
+        frames_.push_back({&root, std::move(prefix), {}});
+    }
+    void finish() { report_unknown(); }
+    // Marks a key of the current object as known, for keys the caller reads itself.
+    void claim(const char* key) { find(key); }
+
+    template <class Fn>
+    void object(const char* key, const char*, Fn&& fn) {
+        const json* v = find(key);
+        if (!v) return;
+        if (!v->is_object()) return fail(key, "expected an object, got " + describe(*v));
+        frames_.push_back({v, pointer(key), {}});
+        fn();
+        report_unknown();
+        frames_.pop_back();
+    }
+    void param(const char* key, Param& p, const char*, const char*) {
+        const json* v = find(key);
+        if (!v) return;
+        if (v->is_number()) {
+            p.base = v->get<double>();
+            p.var = 0;
+            plain_.insert(pointer(key));
+            return;
+        }
+        if (!v->is_object())
+            return fail(key, "expected a number or {\"base\": b, \"var\": v}, got " + describe(*v));
+        for (const auto& [k, x] : v->items()) {
+            std::string ptr = pointer(key) + "/" + k;
+            if (k != "base" && k != "var")
+                problems_.push_back(
+                    {ptr, "unknown key (a varied number has \"base\" and \"var\")"});
+            else if (!x.is_number())
+                problems_.push_back({ptr, "expected a number, got " + describe(x)});
+            else
+                (k == "base" ? p.base : p.var) = x.get<double>();
+        }
+    }
+    void number(const char* key, double& x, Range, const char*, const char*) {
+        const json* v = find(key);
+        if (!v) return;
+        if (!v->is_number()) return fail(key, "expected a number, got " + describe(*v));
+        x = v->get<double>();
+    }
+    void integer(const char* key, int& x, Range r, const char*) {
+        const json* v = find(key);
+        if (!v) return;
+        double d = v->is_number() ? v->get<double>() : NAN;
+        if (!v->is_number() || d != std::floor(d))
+            return fail(key, "expected an integer, got " + describe(*v));
+        // Checked here, not by the validator: an int cannot hold every JSON integer.
+        if (d < r.lo || d > r.hi)
+            return fail(key, "must be in " + format_range(r.lo, r.hi) + ", got " + describe(*v));
+        x = static_cast<int>(d);
+    }
+    void boolean(const char* key, bool& x, const char*) {
+        const json* v = find(key);
+        if (!v) return;
+        if (!v->is_boolean()) return fail(key, "expected true or false, got " + describe(*v));
+        x = v->get<bool>();
+    }
+    void vector(const char* key, glm::dvec3& x, const char*, const char*) {
+        const json* v = find(key);
+        if (!v) return;
+        if (!v->is_array() || v->size() != 3 || !(*v)[0].is_number() || !(*v)[1].is_number() ||
+            !(*v)[2].is_number())
+            return fail(key, "expected three numbers [x, y, z], got " + describe(*v));
+        x = {(*v)[0].get<double>(), (*v)[1].get<double>(), (*v)[2].get<double>()};
+    }
+    // A float checked against its range here (shader and scene tables have no separate
+    // validator).
+    void real(const char* key, float& x, Range r, const char*, const char*) {
+        const json* v = find(key);
+        if (!v) return;
+        if (!v->is_number()) return fail(key, "expected a number, got " + describe(*v));
+        double d = v->get<double>();
+        if (!(d >= r.lo && d <= r.hi))
+            return fail(key, "must be in " + format_range(r.lo, r.hi) + ", got " + describe(*v));
+        x = static_cast<float>(d);
+    }
+    // An sRGB colour: [r, g, b] in 0..1 or "#rrggbb".
+    void color(const char* key, glm::vec3& x, const char*) {
+        const json* v = find(key);
+        if (!v) return;
+        if (!parse_color(*v, x))
+            return fail(key,
+                        "expected a colour [r, g, b] in 0..1 or \"#rrggbb\", got " + describe(*v));
+    }
+    void text(const char* key, std::string& x, const char*) {
+        const json* v = find(key);
+        if (!v) return;
+        if (!v->is_string()) return fail(key, "expected a string, got " + describe(*v));
+        x = v->get<std::string>();
+    }
+
+  private:
+    struct Frame {
+        const json* obj;
+        std::string path;
+        std::vector<std::string> asked;
+    };
+    std::vector<Frame> frames_;
+    std::vector<Problem>& problems_;
+    std::set<std::string>& plain_;
+
+    std::string pointer(const char* key) const { return frames_.back().path + "/" + key; }
+    const json* find(const char* key) {
+        Frame& f = frames_.back();
+        f.asked.push_back(key);
+        auto it = f.obj->find(key);
+        return it == f.obj->end() ? nullptr : &*it;
+    }
+    void fail(const char* key, std::string message) {
+        problems_.push_back({pointer(key), std::move(message)});
+    }
+    void report_unknown() {
+        const Frame& f = frames_.back();
+        for (const auto& [k, v] : f.obj->items()) {
+            if (std::find(f.asked.begin(), f.asked.end(), k) != f.asked.end()) continue;
+            std::string msg = "unknown key";
+            const std::string* best = nullptr;
+            size_t best_d = 3;
+            for (const auto& a : f.asked)
+                if (size_t d = edit_distance(k, a); d < best_d) best_d = d, best = &a;
+            if (best) msg += " (did you mean \"" + *best + "\"?)";
+            problems_.push_back({f.path + "/" + k, msg});
+        }
+    }
+};
+
+class Writer {
+  public:
+    ordered_json root = ordered_json::object();
+    Writer() { stack_.push_back(&root); }
+
+    template <class Fn>
+    void object(const char* key, const char*, Fn&& fn) {
+        ordered_json& child = (*stack_.back())[key] = ordered_json::object();
+        stack_.push_back(&child);
+        fn();
+        stack_.pop_back();
+    }
+    void param(const char* key, const Param& p, const char*, const char*) {
+        (*stack_.back())[key] = {{"base", p.base}, {"var", p.var}};
+    }
+    void number(const char* key, double x, Range, const char*, const char*) {
+        (*stack_.back())[key] = x;
+    }
+    void integer(const char* key, int x, Range, const char*) { (*stack_.back())[key] = x; }
+    void boolean(const char* key, bool x, const char*) { (*stack_.back())[key] = x; }
+    void vector(const char* key, const glm::dvec3& x, const char*, const char*) {
+        (*stack_.back())[key] = {x.x, x.y, x.z};
+    }
+    void text(const char* key, const std::string& x, const char*) { (*stack_.back())[key] = x; }
+    void real(const char* key, float x, Range, const char*, const char*) {
+        (*stack_.back())[key] = x;
+    }
+    void color(const char* key, const glm::vec3& x, const char*) {
+        (*stack_.back())[key] = {x.x, x.y, x.z};
+    }
+
+  private:
+    std::vector<ordered_json*> stack_;
+};
+
+class Documenter {
+  public:
+    std::ostringstream out;
+
+    template <class Fn>
+    void object(const char* key, const char* doc, Fn&& fn) {
+        path_.push_back(key);
+        row(here(), "", "", "", std::string("**") + doc + "**");
+        fn();
+        path_.pop_back();
+    }
+    void param(const char* key, const Param& p, const char* unit, const char* doc) {
+        row(here() + "/" + key,
+            "{\"base\": " + format_number(p.base) + ", \"var\": " + format_number(p.var) + "}",
+            format_range(p.lo, p.hi), unit, doc);
+    }
+    void number(const char* key, double x, Range r, const char* unit, const char* doc) {
+        row(here() + "/" + key, format_number(x), format_range(r.lo, r.hi), unit, doc);
+    }
+    void integer(const char* key, int x, Range r, const char* doc) {
+        row(here() + "/" + key, std::to_string(x), format_range(r.lo, r.hi), "", doc);
+    }
+    void boolean(const char* key, bool x, const char* doc) {
+        row(here() + "/" + key, x ? "true" : "false", "", "", doc);
+    }
+    void vector(const char* key, const glm::dvec3& x, const char* unit, const char* doc) {
+        row(here() + "/" + key, format_vector(x.x, x.y, x.z), "", unit, doc);
+    }
+    void text(const char* key, const std::string& x, const char* doc) {
+        row(here() + "/" + key, json(x).dump(), "", "", doc);
+    }
+    void real(const char* key, float x, Range r, const char* unit, const char* doc) {
+        row(here() + "/" + key, format_number(x), format_range(r.lo, r.hi), unit, doc);
+    }
+    void color(const char* key, const glm::vec3& x, const char* doc) {
+        row(here() + "/" + key, format_vector(x.x, x.y, x.z), "[0, 1]", "sRGB", doc);
+    }
+
+  private:
+    std::vector<std::string> path_;
+    std::string here() const {
+        std::string ptr;
+        for (const auto& p : path_) ptr += "/" + p;
+        return ptr;
+    }
+    void row(const std::string& ptr, const std::string& def, const std::string& range,
+             const std::string& unit, const std::string& doc) {
+        out << "| `" << ptr << "` | " << (def.empty() ? "" : "`" + def + "`") << " | " << range
+            << " | " << unit << " | " << doc << " |\n";
+    }
+};
+
+// Parses text (comments allowed) into a JSON object and applies "POINTER=VALUE" overrides
+// (VALUE parsed as JSON, else taken as a string), recording their pointers in `overridden` and
+// their problems in `problems`. Throws InputError on a syntax error or a non-object.
+inline json parse_document(const std::string& text, const std::string& source,
+                           const std::vector<std::string>& overrides,
+                           std::vector<Problem>& problems, std::set<std::string>& overridden) {
+    json doc;
+    try {
+        doc = json::parse(text, nullptr, true, /*ignore_comments=*/true);
+    } catch (const json::parse_error& e) {
+        std::string what = e.what();
+        auto pos = what.find("] ");
+        throw InputError(source, "", pos == std::string::npos ? what : what.substr(pos + 2));
+    }
+    if (!doc.is_object())
+        throw InputError(source, "", "expected a JSON object, got " + describe(doc));
+
+    for (const auto& o : overrides) {
+        auto eq = o.find('=');
+        std::string ptr = o.substr(0, eq);
+        if (eq == std::string::npos || ptr.empty() || ptr[0] != '/') {
+            problems.push_back(
+                {"--set " + o, "expected POINTER=VALUE, e.g. /trunk/taper/base=0.9"});
+            continue;
+        }
+        std::string value = o.substr(eq + 1);
+        json v = json::parse(value, nullptr, false);
+        if (v.is_discarded()) v = value;
+        try {
+            doc[json::json_pointer(ptr)] = v;
+            overridden.insert(ptr);
+        } catch (const json::exception&) {
+            problems.push_back({ptr, "--set cannot place a value here"});
+        }
+    }
+    return doc;
+}
+
+// Appends " (set by --set)" to problems under an overridden pointer.
+inline void mark_overrides(std::vector<Problem>& problems,
+                           const std::set<std::string>& overridden) {
+    for (auto& p : problems)
+        for (const auto& o : overridden)
+            if (p.pointer.starts_with(o)) p.message += " (set by --set)";
+}
+
+}  // namespace pleinair::json_detail

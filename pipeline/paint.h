@@ -1,0 +1,72 @@
+// The still painter: trees built from a scene, every particle turned into a camera-facing
+// brush-stroke sprite, sprites depth-sorted and composited back to front in screen tiles.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "generators/bark.h"
+#include "generators/tree.h"
+#include "pipeline/scene.h"
+
+namespace pleinair {
+
+struct BuiltTree {
+    Tree tree;  // tree-local geometry; the transform below places it
+    BarkParticles bark;
+    uint32_t family = 0;
+    glm::dvec3 position{0.0};
+    double rotation = 0;  // about +y, degrees
+    double scale = 1;
+};
+
+// Generates every tree of the scene (in parallel; the result does not depend on threads).
+// `bark` is false when the frame does not paint bark.
+std::vector<BuiltTree> build_trees(const SceneDesc& scene, bool bark = true);
+
+// A linear, premultiplied RGBA frame; opaque where the background shows. AOVs are filled only
+// when asked for: view depth and object id (tree id + 1, 0 for background) of the frontmost
+// stroke more than half opaque, accumulated stroke alpha, and that stroke's lightness.
+struct Frame {
+    int width = 0, height = 0;
+    std::vector<float> rgba;
+    bool has_aovs = false;
+    std::vector<float> depth, object_id, alpha, lightness;
+};
+
+struct PassReport {
+    std::string name;
+    bool ran = false;
+    std::string why;  // why it ran or was skipped
+    double ms = 0;
+    std::string counts;  // e.g. "12,345 sprites"
+};
+
+struct FrameReport {
+    std::vector<PassReport> passes;
+    uint64_t leaf_sprites = 0, bark_sprites = 0, culled = 0;
+    uint64_t fragments = 0;  // pixel samples evaluated by the stroke shader
+};
+
+struct PaintOptions {
+    bool aovs = false;
+    bool bark = true;
+};
+
+// What the frame needs, decided from the scene alone (DESIGN.md: "the plan").
+struct FramePlan {
+    bool bark = true;         // bark strokes (bark_coverage > 0 and a bark shader)
+    bool tint = false;        // some shader has unique_tint_amt > 0
+    bool atmosphere = false;  // an atmosphere and some shader with a non-zero distance effect
+    bool sub_stroke = false;  // some shader varies colour inside strokes
+    bool aovs = false;
+    std::vector<PassReport> decisions;
+};
+FramePlan plan_frame(const SceneDesc& scene, const PaintOptions& options);
+
+// Paints the frame. Same inputs, same bytes, on any number of threads.
+Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
+                  const FramePlan& plan, FrameReport* report = nullptr);
+
+}  // namespace pleinair

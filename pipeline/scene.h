@@ -1,0 +1,84 @@
+// A scene file (presets/scenes/*.json): camera, sun, background, atmosphere, render settings,
+// tree families with their shaders and palettes, and the trees placed in the world.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "generators/tree_params.h"
+#include "pipeline/camera.h"
+#include "shading/color.h"
+#include "shading/stroke_shader.h"
+
+namespace pleinair {
+
+// Sky and ground as seen from the camera: a gradient by elevation, broken by slow noise so no
+// area reads as flat CG. With `canvas` set, one canvas colour instead.
+struct Background {
+    Color sky_zenith{0.62f, 0.71f, 0.77f};  // sRGB
+    Color sky_horizon{0.91f, 0.89f, 0.80f};
+    Color ground_horizon{0.66f, 0.64f, 0.47f};
+    Color ground_near{0.42f, 0.41f, 0.27f};
+    float horizon_softness = 0.02f;  // elevation (sine) over which sky and ground blend
+    float texture = 0.06f;           // amplitude of the slow noise on the lightness
+    bool canvas = false;
+    Color canvas_color{0.86f, 0.82f, 0.72f};
+};
+
+// Distances along the view axis between which atmospheric perspective grows from 0 to 1.
+struct Atmosphere {
+    float near_distance = 10;
+    float far_distance = 200;
+};
+
+// Quality and style settings of the painter: what accuracy costs is measured over these.
+struct RenderSettings {
+    float stroke_perspective = 0.6f;  // 0: strokes keep their screen size, 1: true perspective
+    float min_stroke_px = 1.5f;       // no stroke is drawn smaller
+    int samples = 4;                  // stroke-mask samples per pixel: 1, 4 or 16
+    int octaves = 1;                  // stroke-noise octaves
+    bool palette_lut = false;         // palette through a 256-entry table instead of exactly
+    float bark_coverage = 2.5f;       // bark strokes' area over the limbs' area
+};
+
+struct Family {
+    std::string name;
+    std::string preset;  // as written in the scene
+    TreeParams params;
+    StrokeShaderParams leaf_shader, bark_shader;
+    Palette leaf_palette, bark_palette;
+};
+
+struct PlacedTree {
+    uint32_t family = 0;
+    uint64_t seed = 1;
+    glm::dvec3 position{0.0};
+    double rotation = 0;  // about +y, degrees
+    double scale = 1;
+};
+
+struct SceneDesc {
+    std::string description;
+    CameraParams camera_params;
+    Camera camera;
+    glm::dvec3 sun_direction{-0.5, 0.8, 0.4};  // towards the sun, unit
+    Background background;
+    bool has_atmosphere = false;
+    Atmosphere atmosphere;
+    RenderSettings render;
+    std::vector<Family> families;
+    std::vector<PlacedTree> trees;
+};
+
+// Throws InputError listing every problem (file, JSON pointer, expected, found).
+SceneDesc parse_scene(const std::string& text, const std::string& source,
+                      const std::vector<std::string>& overrides = {});
+SceneDesc load_scene(const std::filesystem::path& file,
+                     const std::vector<std::string>& overrides = {});
+
+// Markdown table of every scene key.
+std::string scene_reference();
+
+}  // namespace pleinair

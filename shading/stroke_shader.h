@@ -1,0 +1,192 @@
+// The painterly stroke shader of thesis IV.4 to IV.6, shared by leaf and bark strokes: lighting
+// from the particle's place in the tree, the shadow remap, colour picked by lightness, the noise
+// stroke mask under a rounded edge mask, tint and atmospheric perspective.
+#pragma once
+
+#include <cstdint>
+
+#include "shading/color.h"
+#include "shading/curves.h"
+#include "shading/noise.h"
+
+namespace pleinair {
+
+// Every parameter of the thesis's Fig. 21 under its name, plus the few the thesis fixed in code
+// (marked "ours"). Defaults are Fig. 21's values where it shows one. Documented for users in
+// pipeline/shader_io.cpp, where they are parsed.
+struct StrokeShaderParams {
+    // Lightness ranges of the palette's dark, mid and light splines (IV.5).
+    float dark_cutoff_start = 0.30f;
+    float dark_cutoff_end = 0.40f;
+    float mid_cutoff_start = 0.60f;
+    float mid_cutoff_end = 0.68f;
+    float shadow_bias = 0.40f;
+    // Stroke mask (IV.4.4).
+    float stroke_fullness = 0.80f;
+    float stroke_feather_min = 0.40f;
+    float stroke_feather_max = 0.60f;
+    float max_stroke_opacity = 0.90f;
+    float stroke_frequ = 1.5f;  // ours: noise frequency before the two factors below
+    float center_frequ_factor = 5.0f;
+    float lightness_frequ_factor = 5.0f;
+    float s_frequ_scale = 1.0f;  // ours (IV.7 has it for grass): frequency across the stroke
+    float t_frequ_scale = 1.0f;  // ... and along it
+    // Colour noise inside a stroke.
+    float sub_stroke_frequ = 8.0f;
+    float sub_stroke_amt = 0.12f;  // ours: lightness swing of that noise
+    // Lighting modifiers (IV.4.1): outer leaves lighter, inner darker, through gains.
+    float outer_brighten = 0.35f;  // ours
+    float inner_darken = 0.45f;    // ours
+    float center_gain = 0.65f;     // ours: gain on the distance from the centre
+    float branch_gain = 0.5f;      // ours: gain on the distance along the implied branch
+    // Per-tree tint.
+    float unique_tint_amt = 0.02f;
+    Color tint_color1{1.0f, 0.85f, 0.55f};
+    Color tint_color2{0.55f, 0.7f, 0.9f};
+    // Atmospheric perspective (IV.6). Colours here are sRGB, as in preset files.
+    float dist_curve_bias = 0.10f;
+    Color dist_hue_color{0.55f, 0.65f, 0.8f};
+    float dist_hue_strength = 0.03f;
+    float dist_sat_limiter = 0.0f;
+    float dist_value_min = 0.20f;
+    float dist_value_max = 0.78f;
+    // Sprite shape (ours).
+    float sprite_size = 0.3f;    // world size of a stroke, in the tree's units
+    float size_jitter = 0.25f;   // relative, drawn from the label
+    float stroke_aspect = 1.0f;  // length / width; bark strokes are long
+    float angle_jitter = 40.0f;  // degrees, drawn from the label
+};
+
+// IV.4.1: N.L clamped, then outer leaves brightened and inner ones darkened through gains of
+// the stored distances. The darkening stands for self-shadowing by outer leaves that fade away
+// with distance (IV.6), so it weakens as lod_distance goes to 1.
+inline float stroke_lightness(const StrokeShaderParams& p, float n_dot_l, float center_distance,
+                              float branch_distance, float lod_distance) {
+    float l = clamp01(n_dot_l);
+    float outer =
+        0.5f * (gain(center_distance, p.center_gain) + gain(branch_distance, p.branch_gain));
+    l += (1.0f - l) * clamp01(p.outer_brighten) * outer * outer;
+    float inner = 1.0f - outer;
+    l *= 1.0f - clamp01(p.inner_darken) * inner * inner * (1.0f - clamp01(lod_distance));
+    return clamp01(l);
+}
+
+// IV.4.2: a shadow multiplier in 0..1 (1 = lit) remapped to 0.5..1 so shadows never go black,
+// then biased; bias 0.5 leaves it alone, lower darkens, higher lightens.
+inline float shadow_remap(float shadow, float shadow_bias) {
+    return bias(0.5f + 0.5f * clamp01(shadow), shadow_bias);
+}
+
+// IV.4.4: strokes get smaller (higher frequency) away from the centre and in the light.
+inline float stroke_frequency(const StrokeShaderParams& p, float center_distance, float lightness) {
+    return std::max(0.0f, p.stroke_frequ + p.center_frequ_factor * clamp01(center_distance) +
+                              p.lightness_frequ_factor * clamp01(lightness));
+}
+
+// IV.4.4, Fig. 20: 1 in the middle of the sprite, 0 on its border, rounded by sin; fullness is
+// the bias that pushes the shape out to the border (0.8) or shrinks it (0.2).
+inline float edge_mask(float s, float t, float stroke_fullness) {
+    constexpr float kPi = 3.14159265358979f;
+    float e = std::sin(kPi * clamp01(s)) * std::sin(kPi * clamp01(t));
+    return bias(e, stroke_fullness);
+}
+
+// The stroke's opacity from its noise value and edge mask.
+inline float stroke_opacity(const StrokeShaderParams& p, float noise_value, float edge) {
+    float a = smoothstep(p.stroke_feather_min, p.stroke_feather_max, noise_value * edge);
+    return std::min(a, clamp01(p.max_stroke_opacity));
+}
+
+// IV.6: depth between the near and far distances as 0..1, curved by dist_curve_bias (small
+// values keep the near range clear and let the effect grow with distance).
+inline float distance_value(float depth, float near_distance, float far_distance,
+                            float curve_bias) {
+    float d = color_detail::unit_in(depth, near_distance, far_distance);
+    return bias(d, curve_bias);
+}
+
+// A tree id as 0..1, scattered so neighbouring ids get unrelated tints.
+inline float tree_hash01(uint32_t id) {
+    uint32_t h = id * 0x9E3779B1u;
+    h ^= h >> 16;
+    h *= 0x85EBCA6Bu;
+    h ^= h >> 13;
+    return static_cast<float>(h >> 8) * (1.0f / 16777216.0f);
+}
+
+// Everything of a stroke that is constant over its sprite, computed once per sprite.
+struct StrokeConstants {
+    float lightness = 0;  // after lighting modifiers and shadow
+    float frequ_s = 1, frequ_t = 1;
+    float offset_s = 0, offset_t = 0;  // from the label: every sprite's noise differs
+    float sub_frequ = 0, sub_amt = 0;
+    Color tint{0.0f};     // already multiplied by unique_tint_amt
+    float tint_keep = 1;  // 1 - unique_tint_amt
+    Color hue{0.0f};      // dist_hue_color * (dist_hue_strength * d)
+    float hue_keep = 1;
+    float max_saturation = 1;
+    float value_lo = 0, value_hi = 1;  // linear
+    bool atmosphere = false;
+};
+
+// The per-sprite part of the shader. `shadow` is 1 when lit (the still renderer has no shadow
+// rays yet), `d` the atmospheric distance value (distance_value), `tree_id` seeds the tint.
+inline StrokeConstants stroke_constants(const StrokeShaderParams& p, float n_dot_l,
+                                        float center_distance, float branch_distance, float label,
+                                        uint32_t tree_id, float shadow, float d, float lod_distance,
+                                        bool use_tint, bool use_atmosphere) {
+    StrokeConstants k;
+    float l = stroke_lightness(p, n_dot_l, center_distance, branch_distance, lod_distance);
+    if (shadow < 1.0f) l *= shadow_remap(shadow, p.shadow_bias);
+    k.lightness = l;
+    float f = stroke_frequency(p, center_distance, l);
+    k.frequ_s = f * p.s_frequ_scale;
+    k.frequ_t = f * p.t_frequ_scale;
+    // Offsets far apart in label space, kept below 256 (the lattice period).
+    k.offset_s = 211.37f * clamp01(label);
+    k.offset_t = 97.91f * clamp01(label) + 13.0f;
+    k.sub_frequ = p.sub_stroke_frequ;
+    k.sub_amt = p.sub_stroke_amt;
+    if (use_tint) {
+        Color t = srgb_to_linear(mix(p.tint_color1, p.tint_color2, tree_hash01(tree_id)));
+        float a = clamp01(p.unique_tint_amt);
+        k.tint = t * a;
+        k.tint_keep = 1.0f - a;
+    }
+    if (use_atmosphere) {
+        d = clamp01(d);
+        float a = clamp01(p.dist_hue_strength) * d;
+        k.hue = srgb_to_linear(p.dist_hue_color) * a;
+        k.hue_keep = 1.0f - a;
+        k.max_saturation = 1.0f - clamp01(p.dist_sat_limiter) * d;
+        k.value_lo = srgb_to_linear(clamp01(p.dist_value_min) * d);
+        k.value_hi = srgb_to_linear(1.0f - (1.0f - clamp01(p.dist_value_max)) * d);
+        k.atmosphere = true;
+    }
+    return k;
+}
+
+// Noise of the stroke mask at sprite coordinates (s, t).
+inline float stroke_noise(const StrokeConstants& k, float s, float t, int octaves) {
+    return fractal_noise(s * k.frequ_s + k.offset_s, t * k.frequ_t + k.offset_t, octaves);
+}
+
+// Colour of the stroke at (s, t): lightness jittered by the sub-stroke noise, looked up in the
+// palette (exact, or through the LUT when lut is non-null), tinted, then pushed into the
+// distance.
+inline Color stroke_color(const StrokeConstants& k, const Palette& palette, const PaletteLut* lut,
+                          float s, float t) {
+    float l = k.lightness;
+    if (k.sub_amt > 0.0f)
+        l += k.sub_amt * (noise(s * k.sub_frequ + k.offset_t, t * k.sub_frequ + k.offset_s) - 0.5f);
+    Color c = lut ? lookup(*lut, l) : palette_lookup(palette, l);
+    c = c * k.tint_keep + k.tint;
+    if (k.atmosphere) {
+        c = c * k.hue_keep + k.hue;
+        c = limit_saturation(c, k.max_saturation);
+        c = clamp_value(c, k.value_lo, k.value_hi);
+    }
+    return c;
+}
+
+}  // namespace pleinair

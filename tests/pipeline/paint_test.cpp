@@ -1,0 +1,234 @@
+// The still painter: determinism across threads, finite buffers, the frame plan, and the hard
+// cases of the issue (particles at or behind the camera, huge and zero-size sprites, a limb seen
+// end-on, one-colour palettes, equal feather thresholds, an empty scene, a camera looking
+// straight up or down).
+#include "pipeline/paint.h"
+
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <cmath>
+#include <cstring>
+#include <glm/geometric.hpp>
+
+#include "pipeline/image_io.h"
+#include "test_util.h"
+
+namespace pleinair {
+namespace {
+
+std::string scene_text(const std::string& camera, const std::string& trees,
+                       const std::string& extra = "") {
+    return R"({"camera": )" + camera + R"(,
+        "atmosphere": {"near": 10, "far": 120},
+        "render": {"samples": 4},
+        "families": {"oak": {"preset": "oak"}, "birch": {"preset": "birch"}},
+        "trees": )" +
+           trees + extra + "}";
+}
+
+const char* kCamera =
+    R"({"position": [0, 6, 40], "look_at": [0, 7, 0], "fov": 40, "width": 96, "height": 64})";
+const char* kTrees =
+    R"([{"family": "oak", "seed": 1, "position": [-6, 0, 0]},
+        {"family": "birch", "seed": 2, "position": [8, 0, -20], "rotation": 90}])";
+
+void expect_finite(const Frame& f) {
+    for (float v : f.rgba) ASSERT_TRUE(std::isfinite(v));
+    for (const auto* aov : {&f.depth, &f.object_id, &f.alpha, &f.lightness})
+        for (float v : *aov) ASSERT_TRUE(std::isfinite(v));
+}
+
+Frame paint(const SceneDesc& s, bool aovs = false, FrameReport* rep = nullptr) {
+    PaintOptions o;
+    o.aovs = aovs;
+    FramePlan plan = plan_frame(s, o);
+    return paint_frame(s, build_trees(s, plan.bark), plan, rep);
+}
+
+TEST(Paint, SameBytesOnOneAndTwoThreads) {
+    SceneDesc s = parse_scene(scene_text(kCamera, kTrees), "test");
+    Frame one, two;
+    tbb::task_arena(1).execute([&] { one = paint(s, true); });
+    tbb::task_arena(2).execute([&] { two = paint(s, true); });
+    ASSERT_EQ(one.rgba.size(), two.rgba.size());
+    EXPECT_EQ(0, std::memcmp(one.rgba.data(), two.rgba.data(), one.rgba.size() * sizeof(float)));
+    EXPECT_EQ(one.depth, two.depth);
+    EXPECT_EQ(one.object_id, two.object_id);
+    expect_finite(one);
+}
+
+TEST(Paint, StrokesCoverTheTreesAndAovsNameThem) {
+    SceneDesc s = parse_scene(scene_text(kCamera, kTrees), "test");
+    FrameReport rep;
+    Frame f = paint(s, true, &rep);
+    EXPECT_GT(rep.leaf_sprites, 1000u);
+    EXPECT_GT(rep.bark_sprites, 100u);
+    EXPECT_GT(rep.fragments, 10000u);
+    size_t oak = 0, birch = 0;
+    for (size_t i = 0; i < f.object_id.size(); ++i) {
+        oak += f.object_id[i] == 1.0f;
+        birch += f.object_id[i] == 2.0f;
+        if (f.object_id[i] > 0) {
+            EXPECT_GT(f.depth[i], 0.0f);
+            EXPECT_GT(f.alpha[i], 0.5f);
+        }
+        EXPECT_NEAR(f.rgba[4 * i + 3], 1.0f, 1e-5f);  // opaque over the background
+    }
+    EXPECT_GT(oak, 200u);
+    EXPECT_GT(birch, 20u);
+    EXPECT_GT(oak, birch);  // the oak is nearer and bigger
+}
+
+TEST(Paint, PlanSkipsWhatTheSceneDoesNotNeed) {
+    SceneDesc s = parse_scene(scene_text(kCamera, kTrees), "test");
+    FramePlan plan = plan_frame(s, {});
+    EXPECT_TRUE(plan.atmosphere);
+    EXPECT_TRUE(plan.tint);  // corot-leaves has unique_tint_amt 0.02
+    EXPECT_FALSE(plan.aovs);
+    for (auto& f : s.families) f.leaf_shader.unique_tint_amt = f.bark_shader.unique_tint_amt = 0;
+    s.has_atmosphere = false;
+    s.render.bark_coverage = 0;
+    plan = plan_frame(s, {});
+    EXPECT_FALSE(plan.tint);
+    EXPECT_FALSE(plan.atmosphere);
+    EXPECT_FALSE(plan.bark);
+    int skipped = 0;
+    for (const auto& d : plan.decisions) skipped += !d.ran;
+    EXPECT_EQ(skipped, 4);  // bark, tint, atmosphere, aovs
+    // With no tint and no atmosphere the picture changes (they did something before).
+    SceneDesc full = parse_scene(scene_text(kCamera, kTrees), "test");
+    EXPECT_NE(frame_srgb8(paint(full)), frame_srgb8(paint(s)));
+}
+
+// A scene with the families but no placed trees, for hand-made particles.
+SceneDesc bare_scene(const std::string& camera = kCamera) {
+    return parse_scene(scene_text(camera, "[]"), "test");
+}
+
+BuiltTree hand_tree(const std::vector<glm::vec3>& points, glm::vec3 normal = {0, 0, 1}) {
+    BuiltTree b;
+    LeafParticles& L = b.tree.leaves;
+    for (size_t i = 0; i < points.size(); ++i) {
+        L.position.push_back(points[i]);
+        L.normal.push_back(normal);
+        L.branch_distance.push_back(0.5f);
+        L.center_distance.push_back(0.5f);
+        L.label.push_back((i + 0.5f) / points.size());
+        L.tree_id.push_back(0);
+        L.fade_begin.push_back(2.0f);
+        L.fade_end.push_back(3.0f);
+    }
+    return b;
+}
+
+Frame paint_hand(const SceneDesc& s, std::vector<BuiltTree> trees, FrameReport* rep = nullptr) {
+    PaintOptions o;
+    o.aovs = true;
+    return paint_frame(s, trees, plan_frame(s, o), rep);
+}
+
+TEST(PaintHardCases, ParticlesAtAndBehindTheCameraAreCulled) {
+    SceneDesc s = bare_scene();
+    FrameReport rep;
+    Frame f = paint_hand(s, {hand_tree({{0, 6, 40}, {0, 6, 45}, {0, 6, 39.99999f}})}, &rep);
+    expect_finite(f);
+    EXPECT_EQ(rep.culled, 3u);
+    Frame empty = paint_hand(s, {});
+    EXPECT_EQ(f.rgba, empty.rgba);
+}
+
+TEST(PaintHardCases, SpriteLargerThanTheScreenAndZeroSizeSprites) {
+    SceneDesc s = bare_scene();
+    s.families[0].leaf_shader.sprite_size = 500;  // a leaf 1 unit in front: far wider than the view
+    FrameReport rep;
+    Frame f = paint_hand(s, {hand_tree({{0, 6, 38}})}, &rep);
+    expect_finite(f);
+    EXPECT_EQ(rep.leaf_sprites, 1u);
+    EXPECT_GT(rep.fragments, 96u * 64u);  // clipped to the screen, every pixel sampled
+    s.families[0].leaf_shader.sprite_size = 0;
+    s.render.min_stroke_px = 0;
+    rep = {};
+    f = paint_hand(s, {hand_tree({{0, 6, 0}, {1, 6, 0}})}, &rep);
+    expect_finite(f);
+    EXPECT_EQ(rep.leaf_sprites, 0u);
+    EXPECT_EQ(rep.culled, 2u);
+}
+
+TEST(PaintHardCases, NormalAlongTheViewAndLimbSeenEndOn) {
+    // Camera straight above a vertical trunk: the bark tangent is parallel to the view.
+    SceneDesc s = bare_scene(
+        R"({"position": [0, 40, 0], "look_at": [0, 0, 0], "up": [0, 1, 0], "width": 64, "height": 64})");
+    PlacedTree t;
+    t.family = 1;  // birch: a straight trunk
+    s.trees.push_back(t);
+    FrameReport rep;
+    Frame f = paint(s, true, &rep);
+    expect_finite(f);
+    EXPECT_GT(rep.bark_sprites, 0u);
+    // Leaves whose normal points at the camera.
+    Frame g = paint_hand(s, {hand_tree({{0, 10, 0}, {0.5f, 10, 0}}, {0, 1, 0})});
+    expect_finite(g);
+}
+
+TEST(PaintHardCases, OneColourPaletteAndEqualFeatherThresholds) {
+    SceneDesc s = parse_scene(scene_text(kCamera, kTrees), "test");
+    for (auto& fam : s.families) {
+        fam.leaf_palette.dark = fam.leaf_palette.mid =
+            fam.leaf_palette.light = {{Color(0.1f, 0.3f, 0.1f)}};
+        fam.leaf_shader.stroke_feather_min = fam.leaf_shader.stroke_feather_max = 0.5f;
+        fam.leaf_shader.sub_stroke_amt = 0;
+        fam.leaf_shader.unique_tint_amt = 0;
+    }
+    s.has_atmosphere = false;
+    Frame f = paint(s, true);
+    expect_finite(f);
+    // Leaf pixels in front are the palette's one colour blended over what is behind.
+    size_t painted = 0;
+    for (size_t i = 0; i < f.object_id.size(); ++i) painted += f.object_id[i] > 0;
+    EXPECT_GT(painted, 100u);
+}
+
+TEST(PaintHardCases, EmptySceneIsTheBackground) {
+    SceneDesc s = bare_scene();
+    FrameReport rep;
+    Frame f = paint_hand(s, {}, &rep);
+    expect_finite(f);
+    EXPECT_EQ(rep.fragments, 0u);
+    // Sky above the horizon is lighter towards the horizon than at the top.
+    auto lum = [&](int x, int y) {
+        const float* p = &f.rgba[4 * (y * f.width + x)];
+        return p[0] + p[1] + p[2];
+    };
+    EXPECT_NE(lum(48, 2), lum(48, 62));
+}
+
+TEST(PaintHardCases, CameraLookingStraightUpOrDown) {
+    for (
+        const char* cam :
+        {R"({"position": [-6, 1, 0], "look_at": [-6, 50, 0], "up": [0, 1, 0], "width": 48, "height": 48})",
+         R"({"position": [0, 60, 0], "look_at": [0, 0, 0], "up": [0, 1, 0], "width": 48, "height": 48})"}) {
+        SceneDesc s = parse_scene(scene_text(cam, kTrees), "test");
+        EXPECT_NEAR(glm::length(s.camera.right), 1.0, 1e-9);
+        EXPECT_NEAR(glm::dot(s.camera.right, s.camera.forward), 0.0, 1e-9);
+        FrameReport rep;
+        Frame f = paint(s, true, &rep);
+        expect_finite(f);
+        EXPECT_GT(rep.fragments, 0u) << cam;
+    }
+}
+
+TEST(PaintHardCases, CameraInsideATree) {
+    SceneDesc s = parse_scene(
+        scene_text(
+            R"({"position": [-6, 9, 0], "look_at": [-6, 9, -10], "width": 64, "height": 48})",
+            kTrees),
+        "test");
+    FrameReport rep;
+    Frame f = paint(s, true, &rep);
+    expect_finite(f);
+    EXPECT_GT(rep.culled, 0u);
+}
+
+}  // namespace
+}  // namespace pleinair

@@ -1,0 +1,119 @@
+// `pleinair render` as a user runs it: images in every format, the plan, and bad scenes.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "test_util.h"
+
+namespace pleinair {
+namespace {
+
+namespace fs = std::filesystem;
+using test::run_pleinair;
+
+// Appends rather than "a" + b: GCC 12 warns falsely (-Wrestrict) on the latter at -O3.
+std::string render_small(const std::string& rest) {
+    std::string s = "render tests/golden/oak-study/scene.json ";
+    s.append(rest);
+    return s;
+}
+
+TEST(RenderCli, WritesPngTiffAndExrWithAovs) {
+    auto dir = test::temp_dir("render-formats");
+    auto png = run_pleinair(render_small("-o " + (dir / "a.png").string()));
+    ASSERT_EQ(png.exit_code, 0) << png.err;
+    auto tif = run_pleinair(render_small("-o " + (dir / "a.tif").string()));
+    ASSERT_EQ(tif.exit_code, 0) << tif.err;
+    auto exr = run_pleinair(render_small("--aovs -o " + (dir / "a.exr").string()));
+    ASSERT_EQ(exr.exit_code, 0) << exr.err;
+    auto in = OIIO::ImageInput::open((dir / "a.exr").string());
+    ASSERT_TRUE(in);
+    const auto& spec = in->spec();
+    EXPECT_EQ(spec.format, OIIO::TypeDesc::HALF);
+    EXPECT_EQ(spec.nchannels, 8);
+    for (const char* c : {"R", "G", "B", "A", "Z", "object_id", "stroke_alpha", "lightness"})
+        EXPECT_GE(spec.channelindex(c), 0) << c;
+    const int id = spec.channelindex("object_id");
+    std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
+    ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()));
+    size_t tree = 0;
+    for (size_t i = 0; i < px.size(); i += spec.nchannels) {
+        for (int c = 0; c < spec.nchannels; ++c) ASSERT_TRUE(std::isfinite(px[i + c]));
+        tree += px[i + id] == 1.0f;
+    }
+    EXPECT_GT(tree, 1000u);
+    auto png_in = OIIO::ImageInput::open((dir / "a.png").string());
+    ASSERT_TRUE(png_in);
+    EXPECT_EQ(png_in->spec().format, OIIO::TypeDesc::UINT8);
+    for (const auto& e : fs::directory_iterator(dir))
+        EXPECT_EQ(e.path().string().find(".partial"), std::string::npos) << e.path();
+    fs::remove_all(dir);
+}
+
+TEST(RenderCli, ExplainPrintsThePlanWithSkippedPasses) {
+    auto dir = test::temp_dir("render-explain");
+    auto r = run_pleinair(render_small("--explain -o " + (dir / "a.png").string()));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("atmosphere"), std::string::npos);
+    EXPECT_NE(r.out.find("skipped     the scene has no atmosphere"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("skipped     not asked for"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("fragments"), std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST(RenderCli, BadScenesAreOneLineExitTwoAndNoImage) {
+    auto dir = test::temp_dir("render-bad");
+    struct Case {
+        std::string json, expected;
+    } cases[] = {
+        {R"({"camera": {"fov": 0}})", ": /camera: fov must be in (0, 180) degrees\n"},
+        {R"({"camra": {}})", ": /camra: unknown key (did you mean \"camera\"?)\n"},
+        {R"({"families": {"a": {"preset": "oka"}}})",
+         ": /families/a/preset: no tree preset \"oka\""},
+        {R"({"families": {"a": {"preset": "oak"}}, "trees": [{"family": "b"}]})",
+         ": /trees/0/family: no family \"b\" in /families (have: a)\n"},
+        {R"({"render": {"samples": 3}})", ": /render/samples: must be 1, 4 or 16, got 3\n"},
+        {R"({"background": {"sky_zenith": [2, 0, 0]}})",
+         ": /background/sky_zenith: expected a colour"},
+        {"{ \"camera\": ", ": "},
+    };
+    int i = 0;
+    for (const auto& c : cases) {
+        fs::path scene = dir / std::to_string(i++);
+        scene += ".json";
+        { std::ofstream(scene) << c.json; }
+        fs::path out = dir / "never.png";
+        auto r = run_pleinair("render " + scene.string() + " -o " + out.string());
+        EXPECT_EQ(r.exit_code, 2) << c.json;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_EQ(r.err.rfind(scene.string() + c.expected, 0), 0u) << r.err;
+        EXPECT_FALSE(fs::exists(out));
+    }
+    auto r = run_pleinair("render /nonexistent/scene.json -o " + (dir / "x.png").string());
+    EXPECT_EQ(r.exit_code, 2);
+    r = run_pleinair(render_small("-o " + (dir / "x.jpg").string()));
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find(".png, .tif, .tiff or .exr"), std::string::npos) << r.err;
+    fs::remove_all(dir);
+}
+
+TEST(RenderCli, BadShaderPresetNamesItsFileAndKey) {
+    auto dir = test::temp_dir("render-bad-shader");
+    { std::ofstream(dir / "leaves.json") << R"({"stroke": {"stroke_fullness": 1.5}})"; }
+    {
+        std::ofstream(dir / "scene.json")
+            << R"({"families": {"a": {"preset": "oak", "leaf_shader": "leaves.json"}}})";
+    }
+    auto r =
+        run_pleinair("render " + (dir / "scene.json").string() + " -o " + (dir / "x.png").string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, (dir / "scene.json").string() +
+                         ": /families/a/leaf_shader: " + (dir / "leaves.json").string() +
+                         ": /stroke/stroke_fullness: must be in [0, 1], got 1.5\n");
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace pleinair

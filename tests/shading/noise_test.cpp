@@ -1,0 +1,98 @@
+// Gradient noise against an independent double-precision reference, its range and its edges.
+#include "shading/noise.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace pleinair {
+namespace {
+
+// Textbook improved Perlin noise in double, written separately from shading/noise.h.
+double ref_fade(double t) { return t * t * t * (t * (t * 6 - 15) + 10); }
+double ref_grad2(int h, double x, double y) {
+    static const double g[8][2] = {{1, 1}, {-1, 1}, {1, -1}, {-1, -1},
+                                   {1, 0}, {-1, 0}, {0, 1},  {0, -1}};
+    return g[h & 7][0] * x + g[h & 7][1] * y;
+}
+int P(int i) { return noise_detail::kPerm[i & 255]; }
+double ref_noise2(double x, double y) {
+    int X = static_cast<int>(std::floor(x)) & 255, Y = static_cast<int>(std::floor(y)) & 255;
+    double fx = x - std::floor(x), fy = y - std::floor(y);
+    double u = ref_fade(fx), v = ref_fade(fy);
+    double n00 = ref_grad2(P(P(X) + Y), fx, fy), n10 = ref_grad2(P(P(X + 1) + Y), fx - 1, fy);
+    double n01 = ref_grad2(P(P(X) + Y + 1), fx, fy - 1);
+    double n11 = ref_grad2(P(P(X + 1) + Y + 1), fx - 1, fy - 1);
+    double a = n00 + u * (n10 - n00), b = n01 + u * (n11 - n01);
+    return a + v * (b - a);
+}
+
+TEST(Noise, MatchesAnIndependentReference) {
+    for (int i = 0; i < 2000; ++i) {
+        float x = -40.0f + 0.0371f * i * 3.1f, y = 17.3f - 0.0219f * i * 2.3f;
+        ASSERT_NEAR(signed_noise(x, y), ref_noise2(x, y), 2e-6) << x << ", " << y;
+    }
+}
+
+TEST(Noise, IsHalfAtLatticePointsAndStaysInZeroOne) {
+    for (int i = -5; i < 5; ++i)
+        for (int j = -5; j < 5; ++j) {
+            EXPECT_EQ(noise(float(i), float(j)), 0.5f);
+            EXPECT_EQ(noise(float(i), float(j), float(i + j)), 0.5f);
+        }
+    double sum = 0, lo = 1, hi = 0;
+    const int n = 200000;
+    for (int i = 0; i < n; ++i) {
+        float x = 0.61803f * i, y = 0.41421f * i * 0.7f;
+        float v2 = noise(x, y), v3 = noise(x, y, 0.3f * x);
+        ASSERT_GE(v2, 0.0f);
+        ASSERT_LE(v2, 1.0f);
+        ASSERT_GE(v3, 0.0f);
+        ASSERT_LE(v3, 1.0f);
+        sum += v2, lo = std::min<double>(lo, v2), hi = std::max<double>(hi, v2);
+    }
+    EXPECT_NEAR(sum / n, 0.5, 0.01);
+    EXPECT_LT(lo, 0.15);  // it uses its range, like RenderMan's noise
+    EXPECT_GT(hi, 0.85);
+}
+
+TEST(Noise, IsContinuous) {
+    for (int i = 0; i < 5000; ++i) {
+        float x = 0.0137f * i, y = 3.0f + 0.0093f * i;
+        EXPECT_LT(std::abs(noise(x + 1e-3f, y) - noise(x, y)), 5e-3f);
+        EXPECT_LT(std::abs(noise(x, y, 1.5f + 1e-3f) - noise(x, y, 1.5f)), 5e-3f);
+    }
+}
+
+TEST(Noise, FarAndNonFiniteInputsGiveFiniteValues) {
+    const float inf = std::numeric_limits<float>::infinity();
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    for (float x : {1e9f, -1e9f, 3e38f, inf, -inf, nan}) {
+        EXPECT_TRUE(std::isfinite(noise(x, 0.5f))) << x;
+        EXPECT_TRUE(std::isfinite(noise(0.5f, x, x))) << x;
+        EXPECT_TRUE(std::isfinite(fractal_noise(x, x, 4))) << x;
+    }
+    // Lattice periodicity: 256 apart is the same value.
+    EXPECT_EQ(noise(3.25f, 7.75f), noise(3.25f + 256.0f, 7.75f));
+}
+
+TEST(Noise, OctavesAddDetailAndOneOctaveIsPlainNoise) {
+    EXPECT_EQ(fractal_noise(1.3f, 2.7f, 1), noise(1.3f, 2.7f));
+    EXPECT_EQ(fractal_noise(1.3f, 2.7f, 0), noise(1.3f, 2.7f));
+    // More octaves: a larger share of the variation happens over short steps.
+    auto roughness = [](int octaves) {
+        double small = 0, large = 0;
+        for (int i = 0; i < 4000; ++i) {
+            float x = 0.05f * i;
+            float n = fractal_noise(x, 0.3f, octaves);
+            small += std::abs(fractal_noise(x + 0.05f, 0.3f, octaves) - n);
+            large += std::abs(fractal_noise(x + 1.5f, 0.3f, octaves) - n);
+        }
+        return small / large;
+    };
+    EXPECT_GT(roughness(4), 1.3 * roughness(1));
+}
+
+}  // namespace
+}  // namespace pleinair
