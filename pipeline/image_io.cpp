@@ -1,6 +1,8 @@
 // OpenImageIO writers with the atomic rename; the only file that includes OpenImageIO.
 #include "pipeline/image_io.h"
 
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -114,6 +116,20 @@ void write_frame(const fs::path& path, const Frame& f) {
         throw std::runtime_error("cannot write " + path.string() + ": " +
                                  (err.empty() ? "rename failed" : err));
     }
+}
+
+ImageError compare_frames(const Frame& a, const Frame& ref) {
+    if (a.width != ref.width || a.height != ref.height)
+        throw std::runtime_error("compare_frames: sizes differ");
+    auto to_buf = [](const Frame& f) {
+        std::vector<uint8_t> bytes = frame_srgb8(f);
+        OIIO::ImageBuf buf(OIIO::ImageSpec(f.width, f.height, 3, OIIO::TypeDesc::FLOAT));
+        buf.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::UINT8, bytes.data());
+        return buf;
+    };
+    OIIO::ImageBuf A = to_buf(a), B = to_buf(ref);
+    auto r = OIIO::ImageBufAlgo::compare(A, B, 1.0f, 1.0f);
+    return {r.rms_error, r.PSNR, r.maxerror};
 }
 
 }  // namespace pleinair

@@ -20,4 +20,13 @@ void write_frame(const std::filesystem::path& path, const Frame& frame);
 // 8-bit sRGB RGB bytes of the frame (what a PNG holds), for tests and contact sheets.
 std::vector<uint8_t> frame_srgb8(const Frame& frame);
 
+// Error of a frame against a reference of the same size, over the 8-bit sRGB values a viewer
+// sees (as 0..1 floats), through OpenImageIO's ImageBufAlgo::compare.
+struct ImageError {
+    double rmse = 0;
+    double psnr = 0;  // dB; infinite when identical
+    double max_error = 0;
+};
+ImageError compare_frames(const Frame& image, const Frame& reference);
+
 }  // namespace pleinair

@@ -28,8 +28,7 @@ constexpr int kTile = 32;
 struct Material {
     const StrokeShaderParams* shader = nullptr;
     const Palette* palette = nullptr;
-    PaletteLut lut;
-    bool use_lut = false;
+    EdgeTable edge;
 };
 
 struct Sprite {
@@ -221,8 +220,7 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
             Material& m = materials[2 * f + kind];
             m.shader = kind == 0 ? &fam.leaf_shader : &fam.bark_shader;
             m.palette = kind == 0 ? &fam.leaf_palette : &fam.bark_palette;
-            m.use_lut = rs.palette_lut;
-            if (m.use_lut) m.lut = make_palette_lut(*m.palette);
+            m.edge = make_edge_table(m.shader->stroke_fullness);
         }
     }
 
@@ -299,6 +297,20 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
     });
     rep.passes.push_back({"sort", true, "back-to-front compositing", ms_since(t0), ""});
 
+    // Per-sprite colour ramps (palette, tint and atmosphere folded in), when the settings
+    // allow the table instead of the exact lookup per fragment.
+    std::vector<StrokeRamp> ramps;
+    if (rs.palette_lut) {
+        t0 = Clock::now();
+        ramps.resize(sprites.size());
+        tbb::parallel_for(size_t{0}, sprites.size(), [&](size_t i) {
+            ramps[i] = make_ramp(sprites[i].k, *materials[sprites[i].material].palette);
+        });
+        rep.passes.push_back({"colour ramps", true,
+                              "render/palette_lut: colours tabulated per sprite", ms_since(t0),
+                              ""});
+    }
+
     // Bins: each tile lists the sprites touching it, in depth order.
     t0 = Clock::now();
     const int tiles_x = (cam.width + kTile - 1) / kTile, tiles_y = (cam.height + kTile - 1) / kTile;
@@ -341,22 +353,29 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
     const int octaves = rs.octaves;
     std::vector<uint64_t> tile_fragments(bins.size(), 0);
 
+    tbb::parallel_for(0, cam.height, [&](int y) {
+        for (int x = 0; x < cam.width; ++x) {
+            Color c = background_color(scene, bg_lin, x + 0.5, y + 0.5);
+            float* px = &frame.rgba[4 * (static_cast<size_t>(y) * cam.width + x)];
+            px[0] = c.x, px[1] = c.y, px[2] = c.z, px[3] = 1.0f;
+        }
+    });
+    rep.passes.push_back({"background", true,
+                          bg.canvas ? "canvas colour" : "sky and ground seen from the camera",
+                          ms_since(t0), ""});
+
+    t0 = Clock::now();
     tbb::parallel_for(size_t{0}, bins.size(), [&](size_t tile) {
         const int tx = static_cast<int>(tile % tiles_x), ty = static_cast<int>(tile / tiles_x);
         const int px0 = tx * kTile, py0 = ty * kTile;
         const int px1 = std::min(px0 + kTile, cam.width), py1 = std::min(py0 + kTile, cam.height);
-        for (int y = py0; y < py1; ++y)
-            for (int x = px0; x < px1; ++x) {
-                Color c = background_color(scene, bg_lin, x + 0.5, y + 0.5);
-                float* px = &frame.rgba[4 * (static_cast<size_t>(y) * cam.width + x)];
-                px[0] = c.x, px[1] = c.y, px[2] = c.z, px[3] = 1.0f;
-            }
         uint64_t fragments = 0;
         for (uint32_t idx : bins[tile]) {
             const Sprite& sp = sprites[idx];
             const Material& m = materials[sp.material];
             const StrokeShaderParams& p = *m.shader;
-            const PaletteLut* lut = m.use_lut ? &m.lut : nullptr;
+            const StrokeRamp* ramp = ramps.empty() ? nullptr : &ramps[idx];
+            const bool edge_lut = rs.edge_lut;
             float r = std::hypot(sp.half_w, sp.half_l);
             int x0 = std::max(px0, static_cast<int>(std::floor(sp.x - r)));
             int x1 = std::min(px1 - 1, static_cast<int>(std::floor(sp.x + r)));
@@ -365,6 +384,21 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
             // (s, t) = across and along the stroke, 0..1 over the sprite.
             const float sx = sp.ay / (2.0f * sp.half_w), sy = -sp.ax / (2.0f * sp.half_w);
             const float txx = sp.ax / (2.0f * sp.half_l), tyy = sp.ay / (2.0f * sp.half_l);
+            if (plan.bare_blend) {
+                for (int y = y0; y <= y1; ++y)
+                    for (int x = x0; x <= x1; ++x) {
+                        float dx = x + 0.5f - sp.x, dy = y + 0.5f - sp.y;
+                        float s = 0.5f + dx * sx + dy * sy, t = 0.5f + dx * txx + dy * tyy;
+                        if (s <= 0.0f || s >= 1.0f || t <= 0.0f || t >= 1.0f) continue;
+                        ++fragments;
+                        float* px = &frame.rgba[4 * (static_cast<size_t>(y) * cam.width + x)];
+                        px[0] = 0.1f + 0.5f * px[0];
+                        px[1] = 0.2f + 0.5f * px[1];
+                        px[2] = 0.05f + 0.5f * px[2];
+                        px[3] = 0.5f + 0.5f * px[3];
+                    }
+                continue;
+            }
             for (int y = y0; y <= y1; ++y)
                 for (int x = x0; x <= x1; ++x) {
                     float cover = 0.0f;
@@ -377,8 +411,10 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                             float t = 0.5f + dx * txx + dy * tyy;
                             if (s <= 0.0f || s >= 1.0f || t <= 0.0f || t >= 1.0f) continue;
                             ++inside;
-                            float e = edge_mask(s, t, p.stroke_fullness);
-                            if (e <= 0.0f) continue;
+                            float e = edge_lut ? edge_mask(m.edge, s, t, p.stroke_fullness)
+                                               : edge_mask(s, t, p.stroke_fullness);
+                            // noise <= 1: below the lower feather threshold nothing shows.
+                            if (e < p.stroke_feather_min || e <= 0.0f) continue;
                             cover += stroke_opacity(p, stroke_noise(sp.k, s, t, octaves), e);
                         }
                     if (!inside) continue;
@@ -388,7 +424,8 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                     float dx = x + 0.5f - sp.x, dy = y + 0.5f - sp.y;
                     float s = clamp01(0.5f + dx * sx + dy * sy);
                     float t = clamp01(0.5f + dx * txx + dy * tyy);
-                    Color col = stroke_color(sp.k, *m.palette, lut, s, t);
+                    Color col = ramp ? stroke_color(sp.k, *ramp, s, t)
+                                     : stroke_color(sp.k, *m.palette, s, t);
                     const size_t pi = static_cast<size_t>(y) * cam.width + x;
                     float* px = &frame.rgba[4 * pi];
                     float keep = 1.0f - a;
@@ -412,8 +449,8 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
     if (plan.aovs)
         for (float& d : frame.depth)
             if (!std::isfinite(d)) d = 0.0f;  // background: no depth (EXR readers expect finite)
-    rep.passes.push_back({"paint", true, "background, then strokes back to front per tile",
-                          ms_since(t0), std::to_string(rep.fragments) + " fragments"});
+    rep.passes.push_back({"paint", true, "strokes back to front, tiles in parallel", ms_since(t0),
+                          std::to_string(rep.fragments) + " fragments"});
     return frame;
 }
 

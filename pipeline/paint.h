@@ -61,6 +61,9 @@ struct FramePlan {
     bool atmosphere = false;  // an atmosphere and some shader with a non-zero distance effect
     bool sub_stroke = false;  // some shader varies colour inside strokes
     bool aovs = false;
+    // Benchmarks only: each sprite's footprint blended with a constant colour at opacity 0.5
+    // instead of shaded, to measure what the shader costs over the bare blend.
+    bool bare_blend = false;
     std::vector<PassReport> decisions;
 };
 FramePlan plan_frame(const SceneDesc& scene, const PaintOptions& options);

@@ -60,7 +60,10 @@ void visit_scene(SceneDesc& s, V& v) {
         v.integer("samples", r.samples, {1, 16}, "Stroke-mask samples per pixel: 1, 4 or 16.");
         v.integer("octaves", r.octaves, {1, 8}, "Octaves of the stroke noise.");
         v.boolean("palette_lut", r.palette_lut,
-                  "Look palettes up in a 256-entry table instead of evaluating the splines.");
+                  "Tabulate each sprite's colours (palette, tint, atmosphere) against its "
+                  "sub-stroke noise at 33 points instead of evaluating them per fragment.");
+        v.boolean("edge_lut", r.edge_lut,
+                  "Read the stroke edge mask from a 256-entry table instead of sin and pow.");
         v.real("bark_coverage", r.bark_coverage, {0, 100}, "",
                "Bark strokes' total area over the limbs' lateral area.");
     });

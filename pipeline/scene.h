@@ -39,7 +39,8 @@ struct RenderSettings {
     float min_stroke_px = 1.5f;       // no stroke is drawn smaller
     int samples = 4;                  // stroke-mask samples per pixel: 1, 4 or 16
     int octaves = 1;                  // stroke-noise octaves
-    bool palette_lut = false;         // palette through a 256-entry table instead of exactly
+    bool palette_lut = true;          // colours from a per-sprite table instead of per fragment
+    bool edge_lut = true;             // the edge mask from a table instead of sin and pow
     float bark_coverage = 2.5f;       // bark strokes' area over the limbs' area
 };
 

@@ -2,7 +2,6 @@
 // and IV.5, where lightness picks the colour instead of scaling it.
 #pragma once
 
-#include <array>
 #include <cmath>
 #include <glm/vec3.hpp>
 #include <vector>
@@ -94,28 +93,6 @@ inline Color palette_lookup(const Palette& p, float lightness) {
     if (l < p.mid_cutoff_end)
         return mix(mid(), light(), unit_in(l, p.mid_cutoff_start, p.mid_cutoff_end));
     return light();
-}
-
-// palette_lookup tabulated at kSize evenly spaced lightnesses and read back with linear
-// interpolation: the "palette LUT" accuracy setting. Its error against the exact lookup is
-// measured by `pleinair bench accuracy`.
-struct PaletteLut {
-    static constexpr int kSize = 256;
-    std::array<Color, kSize + 1> table{};  // one guard entry so i + 1 is always valid
-};
-
-inline PaletteLut make_palette_lut(const Palette& p) {
-    PaletteLut lut;
-    for (int i = 0; i < PaletteLut::kSize; ++i)
-        lut.table[i] = palette_lookup(p, static_cast<float>(i) / (PaletteLut::kSize - 1));
-    lut.table[PaletteLut::kSize] = lut.table[PaletteLut::kSize - 1];
-    return lut;
-}
-
-inline Color lookup(const PaletteLut& lut, float lightness) {
-    float u = clamp01(lightness) * (PaletteLut::kSize - 1);
-    int i = static_cast<int>(u);
-    return mix(lut.table[i], lut.table[i + 1], u - static_cast<float>(i));
 }
 
 // Hue-preserving saturation and value edits for atmospheric perspective, on linear RGB.

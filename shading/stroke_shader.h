@@ -3,6 +3,7 @@
 // stroke mask under a rounded edge mask, tint and atmospheric perspective.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "shading/color.h"
@@ -87,8 +88,47 @@ inline float stroke_frequency(const StrokeShaderParams& p, float center_distance
 // the bias that pushes the shape out to the border (0.8) or shrinks it (0.2).
 inline float edge_mask(float s, float t, float stroke_fullness) {
     constexpr float kPi = 3.14159265358979f;
-    float e = std::sin(kPi * clamp01(s)) * std::sin(kPi * clamp01(t));
+    // Each factor clamped: sin(pi * 1.0f) is -8.7e-8 in float, and two of them multiply to a
+    // positive number whose bias is far from 0.
+    float e = clamp01(std::sin(kPi * clamp01(s))) * clamp01(std::sin(kPi * clamp01(t)));
     return bias(e, stroke_fullness);
+}
+
+// edge_mask as the product of two tabulated profiles: bias(sin(pi s) sin(pi t), b) equals
+// sin(pi s)^k sin(pi t)^k with k = log(b) / log(0.5), so one 1D table of sin(pi u)^k serves
+// both axes. The "edge_lut" accuracy setting; its error is measured by `pleinair bench
+// accuracy` and bounded in the tests.
+struct EdgeTable {
+    static constexpr int kSize = 256;
+    std::array<float, kSize + 2> v{};  // guard entry: index kSize + 1 is valid
+};
+
+inline EdgeTable make_edge_table(float stroke_fullness) {
+    EdgeTable t;
+    constexpr float kPi = 3.14159265358979f;
+    for (int i = 0; i <= EdgeTable::kSize; ++i)
+        t.v[i] = bias(clamp01(std::sin(kPi * static_cast<float>(i) / EdgeTable::kSize)),
+                      stroke_fullness);
+    t.v[0] = t.v[EdgeTable::kSize] = 0.0f;
+    t.v[EdgeTable::kSize + 1] = 0.0f;
+    return t;
+}
+
+// The profile has an infinite slope at the border when b > 0.5 (sin^k with k < 1), which no
+// linear table follows: the first and last cells are evaluated exactly.
+inline float edge_profile(const EdgeTable& t, float u, float stroke_fullness) {
+    float x = clamp01(u) * EdgeTable::kSize;
+    int i = static_cast<int>(x);
+    if (i == 0 || i >= EdgeTable::kSize - 1) {
+        constexpr float kPi = 3.14159265358979f;
+        return bias(clamp01(std::sin(kPi * clamp01(u))), stroke_fullness);
+    }
+    float f = x - static_cast<float>(i);
+    return t.v[i] + f * (t.v[i + 1] - t.v[i]);
+}
+
+inline float edge_mask(const EdgeTable& t, float s, float t_, float stroke_fullness) {
+    return edge_profile(t, s, stroke_fullness) * edge_profile(t, t_, stroke_fullness);
 }
 
 // The stroke's opacity from its noise value and edge mask.
@@ -171,15 +211,8 @@ inline float stroke_noise(const StrokeConstants& k, float s, float t, int octave
     return fractal_noise(s * k.frequ_s + k.offset_s, t * k.frequ_t + k.offset_t, octaves);
 }
 
-// Colour of the stroke at (s, t): lightness jittered by the sub-stroke noise, looked up in the
-// palette (exact, or through the LUT when lut is non-null), tinted, then pushed into the
-// distance.
-inline Color stroke_color(const StrokeConstants& k, const Palette& palette, const PaletteLut* lut,
-                          float s, float t) {
-    float l = k.lightness;
-    if (k.sub_amt > 0.0f)
-        l += k.sub_amt * (noise(s * k.sub_frequ + k.offset_t, t * k.sub_frequ + k.offset_s) - 0.5f);
-    Color c = lut ? lookup(*lut, l) : palette_lookup(palette, l);
+// Tint, then atmospheric perspective: what happens to a palette colour after the lookup.
+inline Color finish_color(const StrokeConstants& k, Color c) {
     c = c * k.tint_keep + k.tint;
     if (k.atmosphere) {
         c = c * k.hue_keep + k.hue;
@@ -187,6 +220,43 @@ inline Color stroke_color(const StrokeConstants& k, const Palette& palette, cons
         c = clamp_value(c, k.value_lo, k.value_hi);
     }
     return c;
+}
+
+// Colour of the stroke at (s, t), exactly: lightness jittered by the sub-stroke noise, looked
+// up in the palette, tinted, then pushed into the distance.
+inline Color stroke_color(const StrokeConstants& k, const Palette& palette, float s, float t) {
+    float l = k.lightness;
+    if (k.sub_amt > 0.0f)
+        l += k.sub_amt * (noise(s * k.sub_frequ + k.offset_t, t * k.sub_frequ + k.offset_s) - 0.5f);
+    return finish_color(k, palette_lookup(palette, l));
+}
+
+// A stroke's final colours tabulated against its sub-stroke noise value: lightness varies only
+// through that noise inside a sprite, and tint and atmosphere are constant over it, so
+// kSize + 1 colours per sprite replace the palette, tint and atmosphere per fragment. The
+// "palette_lut" accuracy setting.
+struct StrokeRamp {
+    static constexpr int kSize = 32;
+    std::array<Color, kSize + 2> c{};
+};
+
+inline StrokeRamp make_ramp(const StrokeConstants& k, const Palette& palette) {
+    StrokeRamp r;
+    for (int i = 0; i <= StrokeRamp::kSize; ++i) {
+        float n = static_cast<float>(i) / StrokeRamp::kSize;
+        r.c[i] = finish_color(k, palette_lookup(palette, k.lightness + k.sub_amt * (n - 0.5f)));
+    }
+    r.c[StrokeRamp::kSize + 1] = r.c[StrokeRamp::kSize];
+    return r;
+}
+
+// stroke_color through the ramp.
+inline Color stroke_color(const StrokeConstants& k, const StrokeRamp& r, float s, float t) {
+    if (!(k.sub_amt > 0.0f)) return r.c[StrokeRamp::kSize / 2];
+    float n = noise(s * k.sub_frequ + k.offset_t, t * k.sub_frequ + k.offset_s);
+    float x = n * StrokeRamp::kSize;
+    int i = static_cast<int>(x);
+    return mix(r.c[i], r.c[i + 1], x - static_cast<float>(i));
 }
 
 }  // namespace pleinair

@@ -26,7 +26,8 @@ struct FamilyCommand {
     std::string preset;
     uint64_t seed = 1;  // base seed; member i gets member_seed(seed, i)
     uint32_t count = 6;
-    std::string out;
+    std::string out;  // a directory for the members' files, or an image for a contact sheet
+    int width = 1920, height = 1080;  // of the contact sheet
     std::vector<std::string> set;
     std::string save_preset;
 };
@@ -39,6 +40,13 @@ struct RenderCommand {
     std::vector<std::string> set;  // "POINTER=VALUE" overrides of the scene
 };
 
+struct BenchCommand {
+    std::string what;  // "accuracy"
+    std::string scene;
+    int repeat = 3;  // renders per setting; the median time is reported
+    std::vector<std::string> set;
+};
+
 struct PresetsCommand {
     std::string reference;  // "trees", "shaders" or "scenes": print that key reference instead
 };
@@ -48,5 +56,6 @@ int run_tree(const TreeCommand& cmd);
 int run_family(const FamilyCommand& cmd);
 int run_presets(const PresetsCommand& cmd);
 int run_render(const RenderCommand& cmd);
+int run_bench_accuracy(const BenchCommand& cmd);
 
 }  // namespace pleinair

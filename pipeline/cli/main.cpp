@@ -46,7 +46,12 @@ int main(int argc, char** argv) {
     f->add_option("--preset", family.preset, "Preset name or JSON file")->required();
     f->add_option("--count", family.count, "Number of members")->check(CLI::Range(1, 100000));
     f->add_option("--seed", family.seed, "Base seed");
-    f->add_option("-o,--out", family.out, "Output directory (one folder per member)")->required();
+    f->add_option("-o,--out", family.out,
+                  "Output directory (one folder per member), or an image path (.png, .tif, .exr) "
+                  "for a painted contact sheet")
+        ->required();
+    f->add_option("--width", family.width, "Contact sheet width")->check(CLI::Range(16, 16384));
+    f->add_option("--height", family.height, "Contact sheet height")->check(CLI::Range(16, 16384));
     f->add_option("--set", family.set, "Override a preset key: POINTER=VALUE");
     f->add_option("--save-preset", family.save_preset,
                   "Write the fully resolved parameters to FILE");
@@ -60,6 +65,16 @@ int main(int argc, char** argv) {
                 "Print the frame's plan: passes run or skipped and why, times, counts");
     r->add_flag("--aovs", render.aovs, "Add depth, object id, alpha, lightness channels (EXR)");
     r->add_option("--set", render.set, "Override a scene key: POINTER=VALUE, e.g. /camera/fov=30");
+
+    BenchCommand bench;
+    auto* b = app.add_subcommand("bench", "Measure what accuracy costs in time");
+    b->add_option("what", bench.what, "What to measure: accuracy")
+        ->required()
+        ->check(CLI::IsMember({"accuracy"}));
+    b->add_option("scene", bench.scene, "Scene name or JSON file")->required();
+    b->add_option("--repeat", bench.repeat, "Renders per setting (median time reported)")
+        ->check(CLI::Range(1, 1000));
+    b->add_option("--set", bench.set, "Override a scene key: POINTER=VALUE");
 
     PresetsCommand presets;
     auto* p = app.add_subcommand("presets", "List the shipped presets, one line each");
@@ -88,6 +103,7 @@ int main(int argc, char** argv) {
         if (*f) return run_family(family);
         if (*p) return run_presets(presets);
         if (*r) return run_render(render);
+        if (*b) return run_bench_accuracy(bench);
     } catch (const InputError& e) {
         std::cerr << e.what() << "\n";
         return 2;

@@ -98,18 +98,6 @@ TEST(Palette, EqualCutoffsAndOneColourAreSafe) {
         expect_color(palette_lookup(one, l), Color(0.3f, 0.4f, 0.2f));
 }
 
-TEST(Palette, LutStaysCloseToTheExactLookup) {
-    Palette p = test_palette();
-    PaletteLut lut = make_palette_lut(p);
-    float worst = 0;
-    for (int i = 0; i <= 5000; ++i) {
-        float l = i / 5000.0f;
-        worst = std::max(worst, glm::length(lookup(lut, l) - palette_lookup(p, l)));
-    }
-    EXPECT_LT(worst, 0.01f);
-    EXPECT_GT(worst, 0.0f);  // a table, not the same function
-}
-
 TEST(Color, SaturationLimitKeepsHueOrderAndValue) {
     Color c(0.8f, 0.4f, 0.2f);  // saturation 0.75
     Color d = limit_saturation(c, 0.25f);

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/geometric.hpp>
+
 namespace pleinair {
 namespace {
 
@@ -48,7 +50,8 @@ TEST(StrokeShader, EdgeMaskIsOneInTheMiddleZeroOnTheBorderAndGrowsWithFullness) 
     for (float b : {0.2f, 0.5f, 0.8f}) {
         EXPECT_NEAR(edge_mask(0.5f, 0.5f, b), 1.0f, 1e-6f);
         EXPECT_NEAR(edge_mask(0.0f, 0.5f, b), 0.0f, 1e-6f);
-        EXPECT_NEAR(edge_mask(0.5f, 1.0f, b), 0.0f, 1e-5f);
+        EXPECT_EQ(edge_mask(0.5f, 1.0f, b), 0.0f);
+        EXPECT_EQ(edge_mask(1.0f, 1.0f, b), 0.0f);  // two tiny negative sines must not multiply
     }
     // Fig. 20: higher fullness pushes the mask to the border.
     EXPECT_GT(edge_mask(0.1f, 0.5f, 0.8f), edge_mask(0.1f, 0.5f, 0.5f));
@@ -88,7 +91,7 @@ TEST(StrokeShader, ColourIsThePaletteWithoutTintOrAtmosphere) {
     StrokeConstants k =
         stroke_constants(p, 0.7f, 0.5f, 0.5f, 0.3f, 4, 1.0f, 0.0f, 0.0f, false, false);
     for (float s : {0.1f, 0.5f, 0.9f}) {
-        Color c = stroke_color(k, pal, nullptr, s, 0.4f);
+        Color c = stroke_color(k, pal, s, 0.4f);
         EXPECT_NEAR(c.x, 0.2f, 1e-6f);
         EXPECT_NEAR(c.y, 0.3f, 1e-6f);
     }
@@ -103,13 +106,13 @@ TEST(StrokeShader, FullAtmosphereGreysAndClampsValue) {
     Palette pal = one_colour(srgb_to_linear(Color(0.9f, 0.2f, 0.1f)));
     StrokeConstants k =
         stroke_constants(p, 0.7f, 0.5f, 0.5f, 0.3f, 4, 1.0f, 1.0f, 0.0f, false, true);
-    Color c = stroke_color(k, pal, nullptr, 0.5f, 0.5f);
+    Color c = stroke_color(k, pal, 0.5f, 0.5f);
     EXPECT_NEAR(c.x, c.y, 1e-6f);  // no saturation left
     EXPECT_NEAR(c.y, c.z, 1e-6f);
     EXPECT_NEAR(linear_to_srgb(c.x), 0.6f, 1e-4f);  // value lowered to dist_value_max
     // Half way, half the effect: saturation limit 0.5.
     k = stroke_constants(p, 0.7f, 0.5f, 0.5f, 0.3f, 4, 1.0f, 0.5f, 0.0f, false, true);
-    c = stroke_color(k, pal, nullptr, 0.5f, 0.5f);
+    c = stroke_color(k, pal, 0.5f, 0.5f);
     EXPECT_NEAR((c.x - c.z) / c.x, 0.5f, 1e-4f);
 }
 
@@ -121,10 +124,52 @@ TEST(StrokeShader, TintMixesTheTreesColourByAmount) {
     Palette pal = one_colour(Color(0.0f, 0.0f, 1.0f));
     StrokeConstants k =
         stroke_constants(p, 0.7f, 0.5f, 0.5f, 0.3f, 9, 1.0f, 0.0f, 0.0f, true, false);
-    Color c = stroke_color(k, pal, nullptr, 0.5f, 0.5f);
+    Color c = stroke_color(k, pal, 0.5f, 0.5f);
     EXPECT_NEAR(c.x, 0.5f, 1e-6f);
     EXPECT_NEAR(c.z, 0.5f, 1e-6f);
     EXPECT_NE(tree_hash01(1), tree_hash01(2));
+}
+
+TEST(StrokeShader, EdgeTableMatchesTheExactMask) {
+    for (float b : {0.2f, 0.5f, 0.8f, 0.95f}) {
+        EdgeTable t = make_edge_table(b);
+        float worst = 0;
+        for (int i = 0; i <= 200; ++i)
+            for (int j = 0; j <= 200; ++j) {
+                float s = i / 200.0f, u = j / 200.0f;
+                worst = std::max(worst, std::abs(edge_mask(t, s, u, b) - edge_mask(s, u, b)));
+            }
+        EXPECT_LT(worst, 5e-3f) << b;  // under one 8-bit level of opacity
+        EXPECT_EQ(edge_mask(t, 0.0f, 0.5f, b), 0.0f);
+        EXPECT_NEAR(edge_mask(t, 0.5f, 0.5f, b), 1.0f, 1e-6f);
+    }
+}
+
+TEST(StrokeShader, ColourRampMatchesTheExactColour) {
+    StrokeShaderParams p;
+    p.unique_tint_amt = 0.3f;
+    p.dist_sat_limiter = 0.5f;
+    Palette pal;
+    pal.dark = {{Color(0.02f, 0.03f, 0.01f), Color(0.05f, 0.06f, 0.02f)}};
+    pal.mid = {{Color(0.1f, 0.12f, 0.05f), Color(0.2f, 0.22f, 0.1f)}};
+    pal.light = {{Color(0.4f, 0.42f, 0.2f), Color(0.7f, 0.68f, 0.45f)}};
+    for (float ndl : {0.1f, 0.35f, 0.62f, 0.9f}) {
+        StrokeConstants k = stroke_constants(p, ndl, 0.6f, 0.4f, 0.37f, 3, 1, 0.7f, 0, true, true);
+        StrokeRamp r = make_ramp(k, pal);
+        float worst = 0;
+        for (int i = 0; i < 400; ++i) {
+            float s = (i % 20 + 0.5f) / 20, t = (i / 20 + 0.5f) / 20;
+            worst =
+                std::max(worst, glm::length(stroke_color(k, r, s, t) - stroke_color(k, pal, s, t)));
+        }
+        EXPECT_LT(worst, 5e-3f) << ndl;
+    }
+    // No sub-stroke variation: the ramp's middle colour is the exact one everywhere.
+    p.sub_stroke_amt = 0;
+    StrokeConstants k = stroke_constants(p, 0.5f, 0.6f, 0.4f, 0.37f, 3, 1, 0.7f, 0, true, true);
+    Color exact = stroke_color(k, pal, 0.3f, 0.3f);
+    Color fast = stroke_color(k, make_ramp(k, pal), 0.3f, 0.3f);
+    EXPECT_NEAR(glm::length(exact - fast), 0.0f, 1e-6f);
 }
 
 TEST(StrokeShader, LabelsGiveEverySpriteItsOwnNoise) {

@@ -1,0 +1,60 @@
+// What a painted fragment costs: the full stroke shader against a bare constant-colour alpha
+// blend over the same sprites, one core, measured in the same run. Times are of the paint pass
+// only (the sprites, sort and bins are built the same way for both). Figures: BENCHMARKS.md.
+#include <benchmark/benchmark.h>
+#include <tbb/task_arena.h>
+
+#include "pipeline/paint.h"
+#include "pipeline/presets.h"
+
+using namespace pleinair;
+
+namespace {
+
+struct Fixture {
+    SceneDesc scene;
+    std::vector<BuiltTree> trees;
+    Fixture() {
+        scene = load_scene(resolve_preset("scenes", "grove", "bench"));
+        scene.render.samples = 1;  // one fragment per covered pixel, for both kernels
+        trees = build_trees(scene, true);
+    }
+};
+
+const Fixture& fixture() {
+    static Fixture f;
+    return f;
+}
+
+void paint_pass(benchmark::State& state, bool bare, bool exact) {
+    Fixture f = fixture();
+    f.scene.render.palette_lut = f.scene.render.edge_lut = !exact;
+    FramePlan plan = plan_frame(f.scene, {});
+    plan.bare_blend = bare;
+    tbb::task_arena one(1);
+    double ms = 0;
+    uint64_t fragments = 0;
+    for (auto _ : state) {
+        FrameReport rep;
+        one.execute([&] { benchmark::DoNotOptimize(paint_frame(f.scene, f.trees, plan, &rep)); });
+        double paint_ms = 0;
+        for (const auto& p : rep.passes)
+            if (p.name == "paint") paint_ms = p.ms;
+        state.SetIterationTime(paint_ms / 1000.0);
+        ms += paint_ms;
+        fragments += rep.fragments;
+    }
+    state.counters["fragments"] = static_cast<double>(fragments) / state.iterations();
+    state.counters["ns_per_fragment"] = ms * 1e6 / static_cast<double>(fragments);
+}
+
+void BM_PaintShaded(benchmark::State& state) { paint_pass(state, false, false); }
+void BM_PaintShadedExact(benchmark::State& state) { paint_pass(state, false, true); }
+void BM_PaintBareBlend(benchmark::State& state) { paint_pass(state, true, false); }
+
+}  // namespace
+
+BENCHMARK(BM_PaintShaded)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PaintShadedExact)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PaintBareBlend)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_MAIN();
