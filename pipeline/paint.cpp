@@ -13,6 +13,7 @@
 #include <limits>
 
 #include "generators/rng.h"
+#include "shading/stroke_kernel.h"
 
 namespace pleinair {
 
@@ -23,7 +24,7 @@ double ms_since(Clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-constexpr int kTile = 32;
+constexpr int kTile = 64;
 
 struct Material {
     const StrokeShaderParams* shader = nullptr;
@@ -46,6 +47,39 @@ float label_hash(float label, uint32_t salt) {
     static_assert(sizeof bits == sizeof label);
     std::memcpy(&bits, &label, sizeof bits);
     return tree_hash01(bits ^ (salt * 0x27d4eb2fu));
+}
+
+// Half extents of a sprite's screen-aligned bounding box (the rotated rectangle's).
+void extent(const Sprite& sp, float& ex, float& ey) {
+    ex = std::abs(sp.ax) * sp.half_l + std::abs(sp.ay) * sp.half_w;
+    ey = std::abs(sp.ay) * sp.half_l + std::abs(sp.ax) * sp.half_w;
+}
+
+// The pixels of row y that may hold a sample inside the sprite, given s and t's screen
+// gradients: each of 0 < s < 1 and 0 < t < 1 is a slab in x, widened by half a pixel in x and
+// y for the sub-pixel samples. Narrows [xa, xb]; false when the row misses the sprite.
+bool row_span(const Sprite& sp, float sx, float sy, float txx, float tyy, int y, int& xa, int& xb) {
+    const float dy = static_cast<float>(y) + 0.5f - sp.y;
+    float lo = -std::numeric_limits<float>::infinity(), hi = -lo;
+    auto slab = [&](float gx, float gy) {
+        const float c0 = 0.5f + dy * gy, slack = 0.5f * (std::abs(gx) + std::abs(gy));
+        const float a = -slack - c0, b = 1.0f + slack - c0;  // gx * dx must lie in (a, b)
+        if (gx > 0) {
+            lo = std::max(lo, a / gx), hi = std::min(hi, b / gx);
+        } else if (gx < 0) {
+            lo = std::max(lo, b / gx), hi = std::min(hi, a / gx);
+        } else if (!(a < 0 && b > 0)) {
+            hi = lo = 0, lo = 1;  // empty
+        }
+    };
+    slab(sx, sy);
+    slab(txx, tyy);
+    if (!(hi >= lo)) return false;
+    // dx = x + 0.5 - sp.x, so x lies in (lo + sp.x - 0.5, hi + sp.x - 0.5).
+    float fa = std::floor(lo + sp.x - 0.5f), fb = std::ceil(hi + sp.x - 0.5f);
+    if (fa > static_cast<float>(xa)) xa = static_cast<int>(fa);
+    if (fb < static_cast<float>(xb)) xb = static_cast<int>(fb);
+    return xa <= xb;
 }
 
 glm::dvec3 rotate_y(const glm::dvec3& v, double c, double s) {
@@ -95,8 +129,6 @@ bool make_sprite(const SceneDesc& scene, const FramePlan& plan, const Material& 
     out.depth = c.depth;
     out.half_w = 0.5f * w;
     out.half_l = 0.5f * l;
-    float r = std::hypot(out.half_w, out.half_l);
-    if (c.x + r < 0 || c.y + r < 0 || c.x - r > cam.width || c.y - r > cam.height) return false;
 
     // Stroke direction on screen: along the projected tangent (a normal-free frame, so a limb
     // seen end-on still gets one), jittered by the label.
@@ -109,6 +141,9 @@ bool make_sprite(const SceneDesc& scene, const FramePlan& plan, const Material& 
     angle += (label_hash(in.label, 2) - 0.5) * p.angle_jitter * M_PI / 180.0;
     out.ax = static_cast<float>(-std::sin(angle));
     out.ay = static_cast<float>(std::cos(angle));
+    float ex, ey;
+    extent(out, ex, ey);
+    if (c.x + ex < 0 || c.y + ey < 0 || c.x - ex > cam.width || c.y - ey > cam.height) return false;
 
     float n_dot_l = glm::dot(in.normal, glm::vec3(scene.sun_direction));
     float d = 0;
@@ -317,11 +352,16 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
     std::vector<std::vector<uint32_t>> bins(static_cast<size_t>(tiles_x) * tiles_y);
     for (uint32_t idx : order) {
         const Sprite& sp = sprites[idx];
-        float r = std::hypot(sp.half_w, sp.half_l);
-        int x0 = static_cast<int>(std::clamp(std::floor((sp.x - r) / kTile), 0.0f, tiles_x - 1.0f));
-        int x1 = static_cast<int>(std::clamp(std::floor((sp.x + r) / kTile), 0.0f, tiles_x - 1.0f));
-        int y0 = static_cast<int>(std::clamp(std::floor((sp.y - r) / kTile), 0.0f, tiles_y - 1.0f));
-        int y1 = static_cast<int>(std::clamp(std::floor((sp.y + r) / kTile), 0.0f, tiles_y - 1.0f));
+        float ex, ey;
+        extent(sp, ex, ey);
+        int x0 =
+            static_cast<int>(std::clamp(std::floor((sp.x - ex) / kTile), 0.0f, tiles_x - 1.0f));
+        int x1 =
+            static_cast<int>(std::clamp(std::floor((sp.x + ex) / kTile), 0.0f, tiles_x - 1.0f));
+        int y0 =
+            static_cast<int>(std::clamp(std::floor((sp.y - ey) / kTile), 0.0f, tiles_y - 1.0f));
+        int y1 =
+            static_cast<int>(std::clamp(std::floor((sp.y + ey) / kTile), 0.0f, tiles_y - 1.0f));
         for (int ty = y0; ty <= y1; ++ty)
             for (int tx = x0; tx <= x1; ++tx)
                 bins[static_cast<size_t>(ty) * tiles_x + tx].push_back(idx);
@@ -370,23 +410,43 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
         const int px0 = tx * kTile, py0 = ty * kTile;
         const int px1 = std::min(px0 + kTile, cam.width), py1 = std::min(py0 + kTile, cam.height);
         uint64_t fragments = 0;
+        // Premultiplied "over" of one stroke fragment, and the AOVs of the frontmost stroke.
+        auto composite = [&](size_t pi, Color col, float a, const Sprite& sp) {
+            float* px = &frame.rgba[4 * pi];
+            float keep = 1.0f - a;
+            px[0] = col.x * a + px[0] * keep;
+            px[1] = col.y * a + px[1] * keep;
+            px[2] = col.z * a + px[2] * keep;
+            px[3] = a + px[3] * keep;
+            if (plan.aovs) {
+                frame.alpha[pi] = a + frame.alpha[pi] * keep;
+                if (a > 0.5f) {
+                    frame.depth[pi] = sp.depth;
+                    frame.object_id[pi] = static_cast<float>(sp.object_id);
+                    frame.lightness[pi] = sp.k.lightness;
+                }
+            }
+        };
         for (uint32_t idx : bins[tile]) {
             const Sprite& sp = sprites[idx];
             const Material& m = materials[sp.material];
             const StrokeShaderParams& p = *m.shader;
             const StrokeRamp* ramp = ramps.empty() ? nullptr : &ramps[idx];
             const bool edge_lut = rs.edge_lut;
-            float r = std::hypot(sp.half_w, sp.half_l);
-            int x0 = std::max(px0, static_cast<int>(std::floor(sp.x - r)));
-            int x1 = std::min(px1 - 1, static_cast<int>(std::floor(sp.x + r)));
-            int y0 = std::max(py0, static_cast<int>(std::floor(sp.y - r)));
-            int y1 = std::min(py1 - 1, static_cast<int>(std::floor(sp.y + r)));
+            float ex, ey;
+            extent(sp, ex, ey);
+            int x0 = std::max(px0, static_cast<int>(std::floor(sp.x - ex)));
+            int x1 = std::min(px1 - 1, static_cast<int>(std::floor(sp.x + ex)));
+            int y0 = std::max(py0, static_cast<int>(std::floor(sp.y - ey)));
+            int y1 = std::min(py1 - 1, static_cast<int>(std::floor(sp.y + ey)));
             // (s, t) = across and along the stroke, 0..1 over the sprite.
             const float sx = sp.ay / (2.0f * sp.half_w), sy = -sp.ax / (2.0f * sp.half_w);
             const float txx = sp.ax / (2.0f * sp.half_l), tyy = sp.ay / (2.0f * sp.half_l);
             if (plan.bare_blend) {
-                for (int y = y0; y <= y1; ++y)
-                    for (int x = x0; x <= x1; ++x) {
+                for (int y = y0; y <= y1; ++y) {
+                    int xa = x0, xb = x1;
+                    if (!row_span(sp, sx, sy, txx, tyy, y, xa, xb)) continue;
+                    for (int x = xa; x <= xb; ++x) {
                         float dx = x + 0.5f - sp.x, dy = y + 0.5f - sp.y;
                         float s = 0.5f + dx * sx + dy * sy, t = 0.5f + dx * txx + dy * tyy;
                         if (s <= 0.0f || s >= 1.0f || t <= 0.0f || t >= 1.0f) continue;
@@ -397,10 +457,38 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                         px[2] = 0.05f + 0.5f * px[2];
                         px[3] = 0.5f + 0.5f * px[3];
                     }
+                }
                 continue;
             }
-            for (int y = y0; y <= y1; ++y)
-                for (int x = x0; x <= x1; ++x) {
+            if (ramp && edge_lut) {
+                // The vector kernel: one row of the sprite at a time.
+                StrokeRow row;
+                row.cx = sp.x, row.cy = sp.y;
+                row.sx = sx, row.sy = sy, row.txx = txx, row.tyy = tyy;
+                row.feather_min = p.stroke_feather_min, row.feather_max = p.stroke_feather_max;
+                row.max_opacity = p.max_stroke_opacity, row.stroke_fullness = p.stroke_fullness;
+                row.samples_per_axis = n, row.octaves = octaves;
+                row.k = &sp.k, row.edge = &m.edge, row.ramp = ramp;
+                float al[kTile], rr[kTile], gg[kTile], bb[kTile];
+                int ins[kTile];
+                for (int y = y0; y <= y1; ++y) {
+                    int xa = x0, xb = x1;
+                    if (!row_span(sp, sx, sy, txx, tyy, y, xa, xb)) continue;
+                    shade_stroke_row(row, y, xa, xb - xa + 1, al, rr, gg, bb, ins);
+                    for (int c = 0; c <= xb - xa; ++c) {
+                        fragments += static_cast<uint64_t>(ins[c]);
+                        const float a = al[c];
+                        if (!(a > 0.0f)) continue;
+                        const size_t pi = static_cast<size_t>(y) * cam.width + xa + c;
+                        composite(pi, Color(rr[c], gg[c], bb[c]), a, sp);
+                    }
+                }
+                continue;
+            }
+            for (int y = y0; y <= y1; ++y) {
+                int xa = x0, xb = x1;
+                if (!row_span(sp, sx, sy, txx, tyy, y, xa, xb)) continue;
+                for (int x = xa; x <= xb; ++x) {
                     float cover = 0.0f;
                     int inside = 0;
                     for (int j = 0; j < n; ++j)
@@ -426,22 +514,9 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                     float t = clamp01(0.5f + dx * txx + dy * tyy);
                     Color col = ramp ? stroke_color(sp.k, *ramp, s, t)
                                      : stroke_color(sp.k, *m.palette, s, t);
-                    const size_t pi = static_cast<size_t>(y) * cam.width + x;
-                    float* px = &frame.rgba[4 * pi];
-                    float keep = 1.0f - a;
-                    px[0] = col.x * a + px[0] * keep;
-                    px[1] = col.y * a + px[1] * keep;
-                    px[2] = col.z * a + px[2] * keep;
-                    px[3] = a + px[3] * keep;
-                    if (plan.aovs) {
-                        frame.alpha[pi] = a + frame.alpha[pi] * keep;
-                        if (a > 0.5f) {
-                            frame.depth[pi] = sp.depth;
-                            frame.object_id[pi] = static_cast<float>(sp.object_id);
-                            frame.lightness[pi] = sp.k.lightness;
-                        }
-                    }
+                    composite(static_cast<size_t>(y) * cam.width + x, col, a, sp);
                 }
+            }
         }
         tile_fragments[tile] = fragments;
     });

@@ -1,6 +1,6 @@
 // Gradient noise in 2D and 3D with RenderMan's range (0..1, 0.5 on average), deterministic on
-// every platform: Perlin's improved noise on a fixed permutation, in float, no library calls
-// beyond floor.
+// every platform: Perlin's improved noise (3D on his permutation, 2D on an integer hash of the
+// lattice), in float, no library calls beyond floor.
 #pragma once
 
 #include <cmath>
@@ -44,27 +44,11 @@ inline float fade(float t) { return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f)
 inline float lerp(float a, float b, float t) { return a + t * (b - a); }
 
 // Eight gradients of the square's edges and diagonals; the diagonals' length (sqrt 2) keeps the
-// signed range at about [-1, 1].
-inline float grad2(int h, float x, float y) {
-    switch (h & 7) {
-        case 0:
-            return x + y;
-        case 1:
-            return -x + y;
-        case 2:
-            return x - y;
-        case 3:
-            return -x - y;
-        case 4:
-            return x;
-        case 5:
-            return -x;
-        case 6:
-            return y;
-        default:
-            return -y;
-    }
-}
+// signed range at about [-1, 1]. As tables, so the vector kernel (stroke_kernel.cpp) gathers
+// the same numbers and computes the same bits.
+inline constexpr float kGrad2X[8] = {1, -1, 1, -1, 1, -1, 0, 0};
+inline constexpr float kGrad2Y[8] = {1, 1, -1, -1, 0, 0, 1, -1};
+inline float grad2(int h, float x, float y) { return kGrad2X[h & 7] * x + kGrad2Y[h & 7] * y; }
 
 // Perlin's twelve cube-edge gradients (four repeated to make sixteen).
 inline float grad3(int h, float x, float y, float z) {
@@ -88,17 +72,31 @@ inline int cell(float x, float& frac) {
 
 }  // namespace noise_detail
 
+namespace noise_detail {
+// The 2D lattice's gradient choice: an integer hash of the corner instead of Perlin's
+// permutation, because the vector kernel computes it in registers where the permutation
+// would need six gathers per evaluation. Corners wrap at 256 like the permutation's lattice.
+inline uint32_t lattice_hash(uint32_t x, uint32_t y) {
+    uint32_t h = (x * 0x8DA6B343u) ^ (y * 0xD8163841u);
+    h ^= h >> 15;
+    h *= 0x2C1B3C6Du;
+    h ^= h >> 12;
+    return h;
+}
+}  // namespace noise_detail
+
 // Signed 2D gradient noise, about [-1, 1], 0 at every lattice point.
 inline float signed_noise(float x, float y) {
     using namespace noise_detail;
     float fx, fy;
     int X = cell(x, fx), Y = cell(y, fy);
     float u = fade(fx), v = fade(fy);
-    int a = kPerm[X] + Y, b = kPerm[X + 1] + Y;
-    float n00 = grad2(kPerm[a], fx, fy);
-    float n10 = grad2(kPerm[b], fx - 1.0f, fy);
-    float n01 = grad2(kPerm[a + 1], fx, fy - 1.0f);
-    float n11 = grad2(kPerm[b + 1], fx - 1.0f, fy - 1.0f);
+    uint32_t x0 = static_cast<uint32_t>(X), x1 = (x0 + 1) & 255u;
+    uint32_t y0 = static_cast<uint32_t>(Y), y1 = (y0 + 1) & 255u;
+    float n00 = grad2(static_cast<int>(lattice_hash(x0, y0) & 7u), fx, fy);
+    float n10 = grad2(static_cast<int>(lattice_hash(x1, y0) & 7u), fx - 1.0f, fy);
+    float n01 = grad2(static_cast<int>(lattice_hash(x0, y1) & 7u), fx, fy - 1.0f);
+    float n11 = grad2(static_cast<int>(lattice_hash(x1, y1) & 7u), fx - 1.0f, fy - 1.0f);
     return lerp(lerp(n00, n10, u), lerp(n01, n11, u), v);
 }
 

@@ -16,14 +16,22 @@ double ref_grad2(int h, double x, double y) {
                                    {1, 0}, {-1, 0}, {0, 1},  {0, -1}};
     return g[h & 7][0] * x + g[h & 7][1] * y;
 }
-int P(int i) { return noise_detail::kPerm[i & 255]; }
+// The lattice hash, spelled out with 64-bit arithmetic reduced mod 2^32.
+int H(int64_t x, int64_t y) {
+    uint64_t h =
+        ((uint64_t(x & 255) * 0x8DA6B343ull) ^ (uint64_t(y & 255) * 0xD8163841ull)) & 0xFFFFFFFFull;
+    h ^= h >> 15;
+    h = (h * 0x2C1B3C6Dull) & 0xFFFFFFFFull;
+    h ^= h >> 12;
+    return static_cast<int>(h & 7);
+}
 double ref_noise2(double x, double y) {
-    int X = static_cast<int>(std::floor(x)) & 255, Y = static_cast<int>(std::floor(y)) & 255;
+    int64_t X = static_cast<int64_t>(std::floor(x)), Y = static_cast<int64_t>(std::floor(y));
     double fx = x - std::floor(x), fy = y - std::floor(y);
     double u = ref_fade(fx), v = ref_fade(fy);
-    double n00 = ref_grad2(P(P(X) + Y), fx, fy), n10 = ref_grad2(P(P(X + 1) + Y), fx - 1, fy);
-    double n01 = ref_grad2(P(P(X) + Y + 1), fx, fy - 1);
-    double n11 = ref_grad2(P(P(X + 1) + Y + 1), fx - 1, fy - 1);
+    double n00 = ref_grad2(H(X, Y), fx, fy), n10 = ref_grad2(H(X + 1, Y), fx - 1, fy);
+    double n01 = ref_grad2(H(X, Y + 1), fx, fy - 1);
+    double n11 = ref_grad2(H(X + 1, Y + 1), fx - 1, fy - 1);
     double a = n00 + u * (n10 - n00), b = n01 + u * (n11 - n01);
     return a + v * (b - a);
 }
