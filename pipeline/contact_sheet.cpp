@@ -3,6 +3,8 @@
 // (digits are all a label needs, and a font file would be one more thing to install).
 #include "pipeline/contact_sheet.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
@@ -73,7 +75,11 @@ Frame paint_contact_sheet(const Family& family, const std::vector<Tree>& trees,
     scene.render = o.render;
     scene.has_atmosphere = false;
     FramePlan plan = plan_frame(scene, {});
-    for (size_t i = 0; i < trees.size(); ++i) {
+    // Cells are independent: painted in parallel (each also parallel inside), each into its own
+    // part of the sheet, so the bytes do not depend on threads.
+    std::vector<FrameReport> reports(trees.size());
+    tbb::parallel_for(size_t{0}, trees.size(), [&](size_t i) {
+        SceneDesc scene_i = scene;
         BuiltTree b;
         b.tree = trees[i];
         b.position = b.tree.origin;
@@ -103,16 +109,9 @@ Frame paint_contact_sheet(const Family& family, const std::vector<Tree>& trees,
         cp.fov = fov;
         cp.width = cell_w;
         cp.height = cell_h;
-        make_camera(cp, scene.camera);
-        scene.camera_params = cp;
-        FrameReport rep;
-        Frame cell = paint_frame(scene, {b}, plan, &rep);
-        if (report) {
-            report->leaf_sprites += rep.leaf_sprites;
-            report->bark_sprites += rep.bark_sprites;
-            report->fragments += rep.fragments;
-            report->culled += rep.culled;
-        }
+        make_camera(cp, scene_i.camera);
+        scene_i.camera_params = cp;
+        Frame cell = paint_frame(scene_i, {b}, plan, &reports[i]);
         const int cx = o.gap + static_cast<int>(i % cols) * (cell_w + o.gap);
         const int cy = o.gap + static_cast<int>(i / cols) * (cell_h + o.gap);
         for (int y = 0; y < cell_h; ++y)
@@ -121,7 +120,14 @@ Frame paint_contact_sheet(const Family& family, const std::vector<Tree>& trees,
         int scale = std::clamp(cell_h / 120, 1, 4);
         draw_label(sheet, cx + 2 * scale, cy + cell_h - 9 * scale, std::to_string(b.tree.seed),
                    scale);
-    }
+    });
+    if (report)
+        for (const FrameReport& rep : reports) {
+            report->leaf_sprites += rep.leaf_sprites;
+            report->bark_sprites += rep.bark_sprites;
+            report->fragments += rep.fragments;
+            report->culled += rep.culled;
+        }
     return sheet;
 }
 

@@ -393,9 +393,26 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
     const int octaves = rs.octaves;
     std::vector<uint64_t> tile_fragments(bins.size(), 0);
 
+    // The background is smooth (a gradient under slow noise): it is evaluated on a lattice of
+    // every kBgStep-th pixel and interpolated bilinearly, 1/16 of the work.
+    constexpr int kBgStep = 4;
+    const int gw = (cam.width + kBgStep - 1) / kBgStep + 1;
+    const int gh = (cam.height + kBgStep - 1) / kBgStep + 1;
+    std::vector<Color> lattice(static_cast<size_t>(gw) * gh);
+    tbb::parallel_for(0, gh, [&](int j) {
+        for (int i = 0; i < gw; ++i)
+            lattice[static_cast<size_t>(j) * gw + i] =
+                background_color(scene, bg_lin, kBgStep * i + 0.5, kBgStep * j + 0.5);
+    });
     tbb::parallel_for(0, cam.height, [&](int y) {
+        const int j = y / kBgStep;
+        const float fy = static_cast<float>(y % kBgStep) / kBgStep;
+        const Color* r0 = &lattice[static_cast<size_t>(j) * gw];
+        const Color* r1 = r0 + gw;
         for (int x = 0; x < cam.width; ++x) {
-            Color c = background_color(scene, bg_lin, x + 0.5, y + 0.5);
+            const int i = x / kBgStep;
+            const float fx = static_cast<float>(x % kBgStep) / kBgStep;
+            Color c = mix(mix(r0[i], r0[i + 1], fx), mix(r1[i], r1[i + 1], fx), fy);
             float* px = &frame.rgba[4 * (static_cast<size_t>(y) * cam.width + x)];
             px[0] = c.x, px[1] = c.y, px[2] = c.z, px[3] = 1.0f;
         }
@@ -442,6 +459,13 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
             // (s, t) = across and along the stroke, 0..1 over the sprite.
             const float sx = sp.ay / (2.0f * sp.half_w), sy = -sp.ax / (2.0f * sp.half_w);
             const float txx = sp.ax / (2.0f * sp.half_l), tyy = sp.ay / (2.0f * sp.half_l);
+            // The feather, widened by a sample's footprint in noise space when filtering.
+            StrokeShaderParams pf = p;
+            if (rs.filter_strokes) {
+                const float w = stroke_filter_width(sp.k, sp.half_w, sp.half_l, n);
+                pf.stroke_feather_min = p.stroke_feather_min - w;
+                pf.stroke_feather_max = p.stroke_feather_max + w;
+            }
             if (plan.bare_blend) {
                 for (int y = y0; y <= y1; ++y) {
                     int xa = x0, xb = x1;
@@ -465,7 +489,7 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                 StrokeRow row;
                 row.cx = sp.x, row.cy = sp.y;
                 row.sx = sx, row.sy = sy, row.txx = txx, row.tyy = tyy;
-                row.feather_min = p.stroke_feather_min, row.feather_max = p.stroke_feather_max;
+                row.feather_min = pf.stroke_feather_min, row.feather_max = pf.stroke_feather_max;
                 row.max_opacity = p.max_stroke_opacity, row.stroke_fullness = p.stroke_fullness;
                 row.samples_per_axis = n, row.octaves = octaves;
                 row.k = &sp.k, row.edge = &m.edge, row.ramp = ramp;
@@ -502,8 +526,8 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                             float e = edge_lut ? edge_mask(m.edge, s, t, p.stroke_fullness)
                                                : edge_mask(s, t, p.stroke_fullness);
                             // noise <= 1: below the lower feather threshold nothing shows.
-                            if (e < p.stroke_feather_min || e <= 0.0f) continue;
-                            cover += stroke_opacity(p, stroke_noise(sp.k, s, t, octaves), e);
+                            if (e < pf.stroke_feather_min || e <= 0.0f) continue;
+                            cover += stroke_opacity(pf, stroke_noise(sp.k, s, t, octaves), e);
                         }
                     if (!inside) continue;
                     fragments += static_cast<uint64_t>(inside);

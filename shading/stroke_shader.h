@@ -206,6 +206,17 @@ inline StrokeConstants stroke_constants(const StrokeShaderParams& p, float n_dot
     return k;
 }
 
+// RenderMan's filterwidth idiom for the stroke mask: how much the mask's noise changes across
+// one sample's footprint on screen (1 / samples_per_axis pixels), to widen the feather by, so
+// a few samples per pixel do not alias. The noise argument moves frequ / (2 half) lattice units
+// per pixel; 0.3 is half a footprint times the noise's typical slope (0.6 per lattice unit).
+inline float stroke_filter_width(const StrokeConstants& k, float half_w_px, float half_l_px,
+                                 int samples_per_axis) {
+    float g = std::max(k.frequ_s / std::max(2.0f * half_w_px, 1e-6f),
+                       k.frequ_t / std::max(2.0f * half_l_px, 1e-6f));
+    return std::min(0.3f * g / static_cast<float>(std::max(samples_per_axis, 1)), 0.5f);
+}
+
 // Noise of the stroke mask at sprite coordinates (s, t).
 inline float stroke_noise(const StrokeConstants& k, float s, float t, int octaves) {
     return fractal_noise(s * k.frequ_s + k.offset_s, t * k.frequ_t + k.offset_t, octaves);

@@ -48,6 +48,7 @@ int run_bench_accuracy(const BenchCommand& cmd) {
     ref.render.octaves = 8;
     ref.render.palette_lut = false;
     ref.render.edge_lut = false;
+    ref.render.filter_strokes = false;
     Timed reference = timed_paint(ref, trees, 1);
 
     struct Row {
@@ -58,6 +59,10 @@ int run_bench_accuracy(const BenchCommand& cmd) {
         {"antialiasing", "1 sample per pixel", [](RenderSettings& r) { r.samples = 1; }},
         {"antialiasing", "4 samples per pixel", [](RenderSettings& r) { r.samples = 4; }},
         {"antialiasing", "16 samples per pixel", [](RenderSettings& r) { r.samples = 16; }},
+        {"antialiasing", "1 sample, filtered feather",
+         [](RenderSettings& r) { r.samples = 1, r.filter_strokes = true; }},
+        {"antialiasing", "4 samples, filtered feather",
+         [](RenderSettings& r) { r.samples = 4, r.filter_strokes = true; }},
         {"noise octaves", "1 octave", [](RenderSettings& r) { r.octaves = 1; }},
         {"noise octaves", "2 octaves", [](RenderSettings& r) { r.octaves = 2; }},
         {"noise octaves", "4 octaves", [](RenderSettings& r) { r.octaves = 4; }},

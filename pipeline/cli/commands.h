@@ -28,6 +28,7 @@ struct FamilyCommand {
     uint32_t count = 6;
     std::string out;  // a directory for the members' files, or an image for a contact sheet
     int width = 1920, height = 1080;  // of the contact sheet
+    int samples = 1;                  // stroke-mask samples per pixel of the contact sheet
     std::vector<std::string> set;
     std::string save_preset;
 };

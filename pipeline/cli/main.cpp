@@ -52,6 +52,9 @@ int main(int argc, char** argv) {
         ->required();
     f->add_option("--width", family.width, "Contact sheet width")->check(CLI::Range(16, 16384));
     f->add_option("--height", family.height, "Contact sheet height")->check(CLI::Range(16, 16384));
+    f->add_option("--samples", family.samples,
+                  "Contact sheet samples per pixel (1, 4 or 16; the feather is filtered)")
+        ->check(CLI::IsMember({1, 4, 16}));
     f->add_option("--set", family.set, "Override a preset key: POINTER=VALUE");
     f->add_option("--save-preset", family.save_preset,
                   "Write the fully resolved parameters to FILE");

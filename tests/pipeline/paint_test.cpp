@@ -230,5 +230,25 @@ TEST(PaintHardCases, CameraInsideATree) {
     EXPECT_GT(rep.culled, 0u);
 }
 
+TEST(ImageOutput, EightBitEncodingEqualsTheTransferFunction) {
+    Frame f;
+    f.width = 1 << 16;
+    f.height = 1;
+    f.rgba.resize(4 * static_cast<size_t>(f.width));
+    for (int i = 0; i < f.width; ++i) {
+        float x = static_cast<float>(i) / (f.width - 1);
+        f.rgba[4 * i] = x * x;  // dense near black, where the levels are closest
+        f.rgba[4 * i + 1] = x;
+        f.rgba[4 * i + 2] = i % 7 == 0 ? std::nanf("") : 1.5f * x - 0.25f;  // out of range
+    }
+    std::vector<uint8_t> bytes = frame_srgb8(f);
+    for (int i = 0; i < f.width; ++i)
+        for (int c = 0; c < 3; ++c) {
+            float v = f.rgba[4 * i + c];
+            if (!std::isfinite(v)) v = 0;
+            ASSERT_EQ(bytes[3 * i + c], std::lround(255.0f * linear_to_srgb(v))) << v;
+        }
+}
+
 }  // namespace
 }  // namespace pleinair

@@ -2,6 +2,7 @@
 #include "shading/stroke_kernel.h"
 
 #include <gtest/gtest.h>
+#include <hwy/targets.h>
 
 #include <cmath>
 #include <cstring>
@@ -11,7 +12,22 @@
 namespace pleinair {
 namespace {
 
-TEST(StrokeKernel, VectorMatchesScalarBitForBit) {
+void expect_vector_matches_scalar();
+
+// Every SIMD target compiled in and supported by this CPU (SSE2 ... AVX-512 on x86-64).
+TEST(StrokeKernel, VectorMatchesScalarBitForBitOnEveryTarget) {
+    int targets = 0;
+    for (int64_t target : hwy::SupportedAndGeneratedTargets()) {
+        SCOPED_TRACE(hwy::TargetName(target));
+        hwy::SetSupportedTargetsForTest(target);
+        expect_vector_matches_scalar();
+        ++targets;
+    }
+    hwy::SetSupportedTargetsForTest(0);
+    EXPECT_GE(targets, 1);
+}
+
+void expect_vector_matches_scalar() {
     Palette pal;
     pal.dark = {{Color(0.02f, 0.03f, 0.01f), Color(0.05f, 0.06f, 0.02f)}};
     pal.mid = {{Color(0.1f, 0.12f, 0.05f), Color(0.2f, 0.22f, 0.1f)}};
