@@ -459,12 +459,18 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
             // (s, t) = across and along the stroke, 0..1 over the sprite.
             const float sx = sp.ay / (2.0f * sp.half_w), sy = -sp.ax / (2.0f * sp.half_w);
             const float txx = sp.ax / (2.0f * sp.half_l), tyy = sp.ay / (2.0f * sp.half_l);
-            // The feather, widened by a sample's footprint in noise space when filtering.
+            // The feather, widened by the pixel's footprint in noise space at one sample per
+            // pixel (with more, the samples filter; widening too measures worse).
             StrokeShaderParams pf = p;
-            if (rs.filter_strokes) {
+            if (rs.filter_strokes && n == 1) {
+                // A smoothstep convolved with the footprint's box: widths add roughly in
+                // quadrature around the same middle.
                 const float w = stroke_filter_width(sp.k, sp.half_w, sp.half_l, n);
-                pf.stroke_feather_min = p.stroke_feather_min - w;
-                pf.stroke_feather_max = p.stroke_feather_max + w;
+                const float mid = 0.5f * (p.stroke_feather_min + p.stroke_feather_max);
+                const float width = p.stroke_feather_max - p.stroke_feather_min;
+                const float half = 0.5f * std::sqrt(width * width + 4.0f * w * w);
+                pf.stroke_feather_min = mid - half;
+                pf.stroke_feather_max = mid + half;
             }
             if (plan.bare_blend) {
                 for (int y = y0; y <= y1; ++y) {

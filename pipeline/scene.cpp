@@ -63,8 +63,8 @@ void visit_scene(SceneDesc& s, V& v) {
                   "Tabulate each sprite's colours (palette, tint, atmosphere) against its "
                   "sub-stroke noise at 33 points instead of evaluating them per fragment.");
         v.boolean("filter_strokes", r.filter_strokes,
-                  "Widen each stroke's feather by the footprint of a sample in noise space "
-                  "(RenderMan's filterwidth), so few samples per pixel do not alias.");
+                  "At 1 sample per pixel, widen each stroke's feather by the pixel's footprint "
+                  "in noise space (RenderMan's filterwidth) against aliasing.");
         v.boolean("edge_lut", r.edge_lut,
                   "Read the stroke edge mask from a 256-entry table instead of sin and pow.");
         v.real("bark_coverage", r.bark_coverage, {0, 100}, "",

@@ -41,7 +41,7 @@ struct RenderSettings {
     int octaves = 1;                  // stroke-noise octaves
     bool palette_lut = true;          // colours from a per-sprite table instead of per fragment
     bool edge_lut = true;             // the edge mask from a table instead of sin and pow
-    bool filter_strokes = true;       // widen the feather by a sample's footprint
+    bool filter_strokes = true;       // at 1 sample per pixel, widen the feather by its footprint
     float bark_coverage = 2.5f;       // bark strokes' area over the limbs' area
 };
 

@@ -61,8 +61,6 @@ int run_bench_accuracy(const BenchCommand& cmd) {
         {"antialiasing", "16 samples per pixel", [](RenderSettings& r) { r.samples = 16; }},
         {"antialiasing", "1 sample, filtered feather",
          [](RenderSettings& r) { r.samples = 1, r.filter_strokes = true; }},
-        {"antialiasing", "4 samples, filtered feather",
-         [](RenderSettings& r) { r.samples = 4, r.filter_strokes = true; }},
         {"noise octaves", "1 octave", [](RenderSettings& r) { r.octaves = 1; }},
         {"noise octaves", "2 octaves", [](RenderSettings& r) { r.octaves = 2; }},
         {"noise octaves", "4 octaves", [](RenderSettings& r) { r.octaves = 4; }},
