@@ -36,6 +36,36 @@ double ref_noise2(double x, double y) {
     return a + v * (b - a);
 }
 
+// Perlin's reference ImprovedNoise (2002) in double.
+double ref_grad3(int h, double x, double y, double z) {
+    h &= 15;
+    double u = h < 8 ? x : y, v = h < 4 ? y : (h == 12 || h == 14 ? x : z);
+    return ((h & 1) ? -u : u) + ((h & 2) ? -v : v);
+}
+int P(int i) { return noise_detail::kPerm256[i & 255]; }
+double ref_noise3(double x, double y, double z) {
+    int X = static_cast<int>(std::floor(x)) & 255, Y = static_cast<int>(std::floor(y)) & 255,
+        Z = static_cast<int>(std::floor(z)) & 255;
+    x -= std::floor(x), y -= std::floor(y), z -= std::floor(z);
+    double u = ref_fade(x), v = ref_fade(y), w = ref_fade(z);
+    int A = P(X) + Y, AA = P(A) + Z, AB = P(A + 1) + Z, B = P(X + 1) + Y, BA = P(B) + Z,
+        BB = P(B + 1) + Z;
+    auto L = [](double t, double a, double b) { return a + t * (b - a); };
+    return L(
+        w,
+        L(v, L(u, ref_grad3(P(AA), x, y, z), ref_grad3(P(BA), x - 1, y, z)),
+          L(u, ref_grad3(P(AB), x, y - 1, z), ref_grad3(P(BB), x - 1, y - 1, z))),
+        L(v, L(u, ref_grad3(P(AA + 1), x, y, z - 1), ref_grad3(P(BA + 1), x - 1, y, z - 1)),
+          L(u, ref_grad3(P(AB + 1), x, y - 1, z - 1), ref_grad3(P(BB + 1), x - 1, y - 1, z - 1))));
+}
+
+TEST(Noise, ThreeDMatchesPerlinsReference) {
+    for (int i = 0; i < 2000; ++i) {
+        float x = -20.0f + 0.0371f * i * 1.7f, y = 9.3f - 0.0219f * i, z = 0.013f * i * i * 0.01f;
+        ASSERT_NEAR(signed_noise(x, y, z), ref_noise3(x, y, z), 2e-6) << x << ", " << y;
+    }
+}
+
 TEST(Noise, MatchesAnIndependentReference) {
     for (int i = 0; i < 2000; ++i) {
         float x = -40.0f + 0.0371f * i * 3.1f, y = 17.3f - 0.0219f * i * 2.3f;
