@@ -34,6 +34,8 @@ enum class Purpose : uint64_t {
     kFamily = 7,    // member seeds of a family
     kLeafLimb = 8,  // per-limb leaf eligibility
     kBark = 9,      // bark stroke particles, per limb segment
+    kTerrain = 10,  // terrain noise offsets
+    kSurface = 11,  // surface stroke particles, per (surface, span u, span v)
 };
 
 // PCG32 (O'Neill 2014): small state, good statistics, and fully specified, so every platform

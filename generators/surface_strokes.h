@@ -1,0 +1,47 @@
+// The generalized stroke builder (thesis IV.7, Fig. 24): any grid surface becomes a field of
+// stroke particles, clustered per (u, v) section, displaced off the surface, with detail strokes
+// that fade with distance and base strokes that never do.
+#pragma once
+
+#include <cstdint>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <vector>
+
+#include "generators/terrain.h"
+
+namespace pleinair {
+
+struct SurfaceStrokeParams {
+    int particle_spans_u = 5;
+    int particle_spans_v = 5;
+    int particles_per_cluster = 5;     // emitted at random inside each section
+    double displacement_height = 0.1;  // world units, up or down along the normal
+    double detail_threshold =
+        0.6;  // normalised height above which a stroke is detail ("Min Out for Fadeoff")
+    double fade_length = 0.2;       // distance-value span over which a detail stroke fades
+    double fade_length_var = 0.05;  // its gaussian standard deviation
+    double min_fade_length = 0.1;   // no detail stroke fades faster than this
+    uint32_t material = 0;          // stored in every particle (grass, dirt, rock, ...)
+};
+
+// Struct of arrays, as the raster loop wants (DESIGN.md).
+struct SurfaceParticles {
+    std::vector<glm::vec3> position;       // world
+    std::vector<glm::vec3> normal;         // the surface's ("aggregate") normal, unit
+    std::vector<glm::vec3> random_normal;  // uniform on the sphere, unit
+    std::vector<glm::vec2> uv;             // on the source surface, 0..1
+    std::vector<float> height;             // displacement, 0 = deepest .. 1 = highest
+    std::vector<uint32_t> material;
+    std::vector<float> label;       // unique in (0, 1)
+    std::vector<float> fade_begin;  // distance value where a detail stroke starts to fade
+    std::vector<float> fade_end;    // ... and is gone; > 1 for strokes that never fade
+    size_t size() const { return position.size(); }
+};
+
+// Pure: streams keyed by (seed, surface_key, span u, span v), so one section's strokes do not
+// depend on the others or on the span counts elsewhere. Appends to `out`.
+void emit_surface_strokes(const GridSurface& surface, const SurfaceStrokeParams& params,
+                          uint64_t seed, uint64_t surface_key, SurfaceParticles& out);
+
+}  // namespace pleinair

@@ -1,0 +1,140 @@
+// Terrain heightfields and the surface-stroke builder: shapes, ranges, determinism, hard cases.
+#include "generators/terrain.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <set>
+
+#include "generators/surface_strokes.h"
+#include "test_util.h"
+
+namespace pleinair {
+namespace {
+
+TerrainParams two_hills() {
+    TerrainParams p;
+    p.hills = {{"near", {-30, 10}, 25, 8}, {"far", {40, -50}, 40, 15}};
+    p.resolution = 65;
+    return p;
+}
+
+TEST(Terrain, HillsRiseToTheirHeightAndThePlainStaysFlat) {
+    TerrainParams p = two_hills();
+    p.noise_amplitude = 0;
+    EXPECT_NEAR(terrain_height(p, 1, -30, 10), 8.0, 1e-9);
+    EXPECT_NEAR(terrain_height(p, 1, 40, -50), 15.0, 1e-9);
+    EXPECT_NEAR(terrain_height(p, 1, -30 + 12.5, 10), 4.0, 1e-9);  // half way: half height
+    EXPECT_EQ(terrain_height(p, 1, 90, 90), 0.0);
+    // Noise stays within its amplitude.
+    p.noise_amplitude = 0.4;
+    for (int i = 0; i < 200; ++i) {
+        double h = terrain_height(p, 3, 90 - 0.37 * i, 90);
+        EXPECT_LE(std::abs(h), 0.2 + 1e-9);
+    }
+}
+
+TEST(Terrain, GridIsDeterministicFacesUpAndSeedsDiffer) {
+    TerrainParams p = two_hills();
+    GridSurface a = generate_terrain(p, 7), b = generate_terrain(p, 7), c = generate_terrain(p, 8);
+    ASSERT_EQ(a.positions.size(), 65u * 65u);
+    EXPECT_EQ(a.positions, b.positions);
+    EXPECT_NE(a.positions, c.positions);
+    QuadMesh m = grid_mesh(a);
+    EXPECT_EQ(m.quads.size(), 64u * 64u);
+    for (int k = 0; k < 100; ++k) {
+        glm::vec3 pos, n;
+        eval_grid(a, k / 99.0, (k * 37 % 100) / 99.0, pos, n);
+        EXPECT_NEAR(glm::length(n), 1.0f, 1e-5f);
+        EXPECT_GT(n.y, 0.3f);  // gentle hills face up
+    }
+}
+
+TEST(Terrain, FarFromTheOriginAndDegenerateInputsStayFinite) {
+    TerrainParams p = two_hills();
+    p.min = {1e5, 1e5};
+    p.max = {1e5 + 200, 1e5 + 200};
+    p.hills = {{"h", {1e5 + 100, 1e5 + 100}, 30, 10}, {"zero", {1e5, 1e5}, 0, 5}};
+    p.resolution = 1;  // becomes 2 x 2
+    GridSurface g = generate_terrain(p, 1);
+    EXPECT_EQ(g.nu, 2);
+    for (const auto& q : g.positions) EXPECT_TRUE(std::isfinite(q.y));
+    p.resolution = 33;
+    g = generate_terrain(p, 1);
+    float top = -1e9f;
+    for (const auto& q : g.positions) top = std::max(top, q.y);
+    EXPECT_NEAR(top, 10.0f, 0.5f);
+    // A vertical cliff: degenerate cells give +y, not NaN.
+    GridSurface flat{2, 2, {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}}};
+    glm::vec3 pos, n;
+    eval_grid(flat, 0.5, 0.5, pos, n);
+    EXPECT_EQ(n, glm::vec3(0, 1, 0));
+}
+
+TEST(SurfaceStrokes, CountsRangesAndTheDetailSplit) {
+    TerrainParams tp = two_hills();
+    GridSurface g = generate_terrain(tp, 2);
+    SurfaceStrokeParams p;
+    p.particle_spans_u = 12, p.particle_spans_v = 9, p.particles_per_cluster = 7;
+    p.displacement_height = 0.3;
+    p.material = 3;
+    SurfaceParticles s;
+    emit_surface_strokes(g, p, 5, 1, s);
+    ASSERT_EQ(s.size(), 12u * 9u * 7u);
+    std::set<float> labels;
+    size_t detail = 0;
+    for (size_t i = 0; i < s.size(); ++i) {
+        EXPECT_GE(s.height[i], 0.0f);
+        EXPECT_LE(s.height[i], 1.0f);
+        EXPECT_NEAR(glm::length(s.normal[i]), 1.0f, 1e-5f);
+        EXPECT_NEAR(glm::length(s.random_normal[i]), 1.0f, 1e-5f);
+        EXPECT_GE(s.uv[i].x, 0.0f);
+        EXPECT_LE(s.uv[i].y, 1.0f);
+        EXPECT_EQ(s.material[i], 3u);
+        labels.insert(s.label[i]);
+        // The particle sits displacement * normal off the surface point at its uv.
+        glm::vec3 on, n;
+        eval_grid(g, s.uv[i].x, s.uv[i].y, on, n);
+        float d = glm::dot(s.position[i] - on, n);
+        EXPECT_NEAR(d, (s.height[i] * 2 - 1) * 0.3f, 1e-3f);
+        if (s.height[i] > p.detail_threshold) {
+            ++detail;
+            EXPECT_GE(s.fade_begin[i], 0.0f);
+            EXPECT_LE(s.fade_end[i], 1.0f + 1e-6f);
+            EXPECT_GE(s.fade_end[i] - s.fade_begin[i], p.min_fade_length - 1e-6);
+        } else {
+            EXPECT_GT(s.fade_begin[i], 1.0f);  // base strokes never fade
+        }
+    }
+    EXPECT_EQ(labels.size(), s.size());
+    // Heights are uniform: about 40% above 0.6.
+    EXPECT_NEAR(double(detail) / s.size(), 0.4, 0.06);
+}
+
+TEST(SurfaceStrokes, SectionsAreKeyedAndHardCasesEmitSafely) {
+    GridSurface g = generate_terrain(two_hills(), 2);
+    SurfaceStrokeParams p;
+    SurfaceParticles a, b;
+    emit_surface_strokes(g, p, 5, 1, a);
+    emit_surface_strokes(g, p, 5, 1, b);
+    EXPECT_EQ(a.position, b.position);
+    SurfaceParticles other;
+    emit_surface_strokes(g, p, 5, 2, other);  // another surface key: other strokes
+    EXPECT_NE(a.position, other.position);
+    p.particles_per_cluster = 0;
+    SurfaceParticles none;
+    emit_surface_strokes(g, p, 5, 1, none);
+    EXPECT_EQ(none.size(), 0u);
+    p.particles_per_cluster = 3;
+    p.displacement_height = 0;
+    SurfaceParticles flat;
+    emit_surface_strokes(g, p, 5, 1, flat);
+    for (float h : flat.height) EXPECT_EQ(h, 0.5f);
+    GridSurface empty;
+    emit_surface_strokes(empty, p, 5, 1, none);
+    EXPECT_EQ(none.size(), 0u);
+}
+
+}  // namespace
+}  // namespace pleinair
