@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 #include <set>
 
+#include "generators/rock.h"
 #include "generators/surface_strokes.h"
 #include "test_util.h"
 
@@ -134,6 +135,51 @@ TEST(SurfaceStrokes, SectionsAreKeyedAndHardCasesEmitSafely) {
     GridSurface empty;
     emit_surface_strokes(empty, p, 5, 1, none);
     EXPECT_EQ(none.size(), 0u);
+}
+
+TEST(Rock, ClosedOrientedDeterministicAndVaried) {
+    RockParams p;
+    QuadMesh a = generate_rock(p, 3, {5, 0, -2}), b = generate_rock(p, 3, {5, 0, -2});
+    QuadMesh c = generate_rock(p, 4, {5, 0, -2});
+    EXPECT_EQ(a.positions, b.positions);
+    EXPECT_NE(a.positions, c.positions);
+    EXPECT_EQ(a.quads.size(), 6u * 64u);
+    MeshCheck check = check_mesh(a);
+    EXPECT_TRUE(check.ok());
+    EXPECT_EQ(check.euler, 2);
+    EXPECT_GT(check.min_face_area, 0.0);
+    // Inside its scaled radius, squashed vertically, centred where asked.
+    Bounds bb = bounds_of(a.positions);
+    EXPECT_LE(bb.max.y, 0.6f + 1e-4f);
+    EXPECT_GE(bb.min.x, 5.0f - 1.0f - 1e-4f);
+    EXPECT_GT(bb.max.x - bb.min.x, 2 * 0.6f);  // roughness removes at most 35%
+    // Outward orientation: the face normals point away from the centre.
+    for (const auto& q : a.quads) {
+        glm::vec3 n = glm::cross(a.positions[q[2]] - a.positions[q[0]],
+                                 a.positions[q[3]] - a.positions[q[1]]);
+        glm::vec3 mid =
+            0.25f * (a.positions[q[0]] + a.positions[q[1]] + a.positions[q[2]] + a.positions[q[3]]);
+        EXPECT_GT(glm::dot(n, mid - glm::vec3(5, 0, -2)), 0.0f);
+    }
+}
+
+TEST(Rock, DegenerateParametersStillGiveAClosedFiniteMesh) {
+    RockParams p;
+    p.radius = 0;
+    p.roughness = 5;            // clamped to 0.9
+    p.scale = {0, -1, 1};       // clamped to a sliver, mirrored scale taken as positive
+    p.subdivision_levels = 99;  // clamped
+    QuadMesh m = generate_rock(p, 1, {1e5, 0, 1e5});
+    MeshCheck check = check_mesh(m);
+    EXPECT_TRUE(check.finite);
+    EXPECT_TRUE(check.closed);
+    EXPECT_TRUE(check.oriented);
+    p = RockParams{};
+    p.roughness = 0;
+    p.subdivision_levels = 0;
+    m = generate_rock(p, 1, {0, 0, 0});
+    EXPECT_EQ(m.quads.size(), 6u);
+    EXPECT_TRUE(check_mesh(m).ok());
 }
 
 }  // namespace

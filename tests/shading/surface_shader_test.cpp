@@ -1,0 +1,65 @@
+// The generalized surface-stroke shader's functions, value by value and at their edges.
+#include "shading/surface_shader.h"
+
+#include <gtest/gtest.h>
+
+namespace pleinair {
+namespace {
+
+TEST(SurfaceShader, LightingNormalBlendsAndSurvivesOppositeNormals) {
+    glm::vec3 up(0, 1, 0), side(1, 0, 0);
+    EXPECT_EQ(lighting_normal(up, side, 0.0f), up);
+    EXPECT_EQ(lighting_normal(up, side, 1.0f), side);
+    glm::vec3 half = lighting_normal(up, side, 0.5f);
+    EXPECT_NEAR(half.x, std::sqrt(0.5f), 1e-6f);
+    EXPECT_NEAR(half.y, std::sqrt(0.5f), 1e-6f);
+    EXPECT_EQ(lighting_normal(up, -up, 0.5f), up);    // cancels: the surface's normal
+    EXPECT_EQ(lighting_normal(up, side, -3.0f), up);  // weight clamped
+}
+
+TEST(SurfaceShader, DeeperStrokesAreDarker) {
+    SurfaceShaderParams p;
+    EXPECT_FLOAT_EQ(surface_lightness(p, 0.8f, 1.0f), 0.8f);
+    EXPECT_FLOAT_EQ(surface_lightness(p, 0.8f, 0.0f), 0.8f * (1 - 0.35f));
+    EXPECT_FLOAT_EQ(surface_lightness(p, -0.5f, 1.0f), 0.0f);
+    EXPECT_LT(surface_lightness(p, 0.6f, 0.2f), surface_lightness(p, 0.6f, 0.7f));
+}
+
+TEST(SurfaceShader, DetailStrokesGetTheirOwnFrequencies) {
+    SurfaceShaderParams p;
+    float s, t;
+    surface_frequencies(p, 0.3f, s, t);  // base
+    EXPECT_FLOAT_EQ(s, 1.5f);
+    EXPECT_FLOAT_EQ(t, 1.5f);
+    surface_frequencies(p, 0.9f, s, t);  // detail: thin vertical tufts
+    EXPECT_FLOAT_EQ(s, 4.0f * 4.0f);
+    EXPECT_FLOAT_EQ(t, 4.0f * 0.6f);
+    EXPECT_FALSE(is_detail(p, 0.6f));  // the threshold itself is base
+    EXPECT_TRUE(is_detail(p, 0.61f));
+}
+
+TEST(SurfaceShader, CrestShrinksTheVerticalMask) {
+    EXPECT_FLOAT_EQ(crest_factor(1.0f, 0.8f), 1.0f);
+    EXPECT_FLOAT_EQ(crest_factor(-1.0f, 0.8f), 1.0f);
+    EXPECT_NEAR(crest_factor(0.0f, 0.8f), 0.2f, 1e-6f);
+    EXPECT_GT(crest_factor(0.0f, 1.0f), 0.0f);  // never zero: no division by it
+    EXPECT_FLOAT_EQ(crest_t(0.5f, 0.2f), 0.5f);
+    EXPECT_FLOAT_EQ(crest_t(0.6f, 0.2f), 1.0f);  // the band's edge
+    EXPECT_GT(crest_t(0.9f, 0.2f), 1.0f);        // outside: masked
+    EXPECT_FLOAT_EQ(crest_t(0.9f, 1.0f), 0.9f);
+}
+
+TEST(SurfaceShader, InsideGrowthAndMaterials) {
+    EXPECT_FLOAT_EQ(inside_size(1.0f, 2.0f), 1.0f);
+    EXPECT_FLOAT_EQ(inside_size(0.0f, 2.0f), 3.0f);
+    EXPECT_FLOAT_EQ(inside_size(0.0f, -1.0f), 1.0f);
+    int ones = 0;
+    for (int i = 0; i < 400; ++i)
+        ones += noise_material((i % 20) / 20.0f, (i / 20) / 20.0f, 6.0f, 0.5f, 3.7f);
+    EXPECT_GT(ones, 100);  // a hillside mixes both materials
+    EXPECT_LT(ones, 300);
+    EXPECT_EQ(noise_material(0.3f, 0.3f, 6.0f, 1.0f, 0.0f), 0);  // threshold 1: never
+}
+
+}  // namespace
+}  // namespace pleinair
