@@ -36,6 +36,7 @@ enum class Purpose : uint64_t {
     kBark = 9,      // bark stroke particles, per limb segment
     kTerrain = 10,  // terrain noise offsets
     kSurface = 11,  // surface stroke particles, per (surface, span u, span v)
+    kScatter = 12,  // tree placement, per group
 };
 
 // PCG32 (O'Neill 2014): small state, good statistics, and fully specified, so every platform

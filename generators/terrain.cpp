@@ -72,7 +72,7 @@ double terrain_height(const TerrainParams& p, uint64_t seed, double x, double z)
 
 GridSurface generate_terrain(const TerrainParams& p, uint64_t seed) {
     GridSurface g;
-    g.nu = g.nv = std::max(p.resolution, 2);
+    g.nu = g.nv = std::clamp(p.resolution, 2, 8193);  // 67 M points at most
     g.positions.resize(static_cast<size_t>(g.nu) * g.nv);
     const NoiseOffset o = noise_offset(seed);
     for (int j = 0; j < g.nv; ++j)

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "generators/rock.h"
+#include "generators/scatter.h"
 #include "generators/surface_strokes.h"
 #include "test_util.h"
 
@@ -180,6 +181,77 @@ TEST(Rock, DegenerateParametersStillGiveAClosedFiniteMesh) {
     m = generate_rock(p, 1, {0, 0, 0});
     EXPECT_EQ(m.quads.size(), 6u);
     EXPECT_TRUE(check_mesh(m).ok());
+}
+
+TEST(Scatter, PoissonSpacingInsideTheRegionWithTheFamilyMix) {
+    TerrainParams t;  // flat with gentle noise
+    ScatterParams p;
+    p.center = {10, -20};
+    p.radius = 40;
+    p.min_distance = 5;
+    p.weights = {3, 1};
+    auto trees = scatter_trees(t, 1, p, 9, 0);
+    ASSERT_GT(trees.size(), 100u);
+    size_t first = 0;
+    for (size_t i = 0; i < trees.size(); ++i) {
+        const auto& a = trees[i];
+        EXPECT_LE(std::hypot(a.position.x - 10, a.position.z + 20), 40 + 1e-9);
+        EXPECT_NEAR(a.position.y, terrain_height(t, 1, a.position.x, a.position.z), 1e-12);
+        first += a.family == 0;
+        EXPECT_LT(a.family, 2u);
+        for (size_t j = 0; j < i; ++j)
+            EXPECT_GE(
+                std::hypot(a.position.x - trees[j].position.x, a.position.z - trees[j].position.z),
+                5.0 - 1e-9);
+    }
+    EXPECT_NEAR(double(first) / trees.size(), 0.75, 0.1);
+    auto again = scatter_trees(t, 1, p, 9, 0);
+    ASSERT_EQ(again.size(), trees.size());
+    for (size_t i = 0; i < trees.size(); ++i) {
+        EXPECT_EQ(again[i].position, trees[i].position);
+        EXPECT_EQ(again[i].seed, trees[i].seed);
+    }
+    auto other = scatter_trees(t, 1, p, 9, 1);  // another group: another placement
+    EXPECT_NE(other.front().seed, trees.front().seed);
+}
+
+TEST(Scatter, NoTreeOnSteepSlopesOrInWater) {
+    TerrainParams t;
+    t.noise_amplitude = 0;
+    t.hills = {{"steep", {0, 0}, 20, 30}};  // slopes up to about 67 degrees
+    ScatterParams p;
+    p.radius = 35;
+    p.min_distance = 3;
+    p.max_slope = 30;
+    auto trees = scatter_trees(t, 1, p, 4, 0);
+    ASSERT_GT(trees.size(), 20u);  // the plain around the hill and its gentle top
+    for (const auto& a : trees) {
+        double h = 0.01;
+        double dx = (terrain_height(t, 1, a.position.x + h, a.position.z) -
+                     terrain_height(t, 1, a.position.x - h, a.position.z)) /
+                    (2 * h);
+        double dz = (terrain_height(t, 1, a.position.x, a.position.z + h) -
+                     terrain_height(t, 1, a.position.x, a.position.z - h)) /
+                    (2 * h);
+        EXPECT_LE(std::atan(std::hypot(dx, dz)) * 180 / M_PI, 31.0);
+    }
+    // Water over everything, or no slope allowed on a hill: no room for trees.
+    p.water_level = 100;
+    EXPECT_TRUE(scatter_trees(t, 1, p, 4, 0).empty());
+    p.water_level = -1e30;
+    p.center = {10, 0};  // on the hill's flank
+    p.radius = 3;
+    p.max_slope = 0;
+    EXPECT_TRUE(scatter_trees(t, 1, p, 4, 0).empty());
+    // Degenerate inputs.
+    p.min_distance = 0;
+    EXPECT_TRUE(scatter_trees(t, 1, p, 4, 0).empty());
+    p.min_distance = 1e-9;
+    p.radius = 1e6;
+    EXPECT_TRUE(scatter_trees(t, 1, p, 4, 0).empty());
+    p = ScatterParams{};
+    p.radius = 0;  // a single point
+    EXPECT_EQ(scatter_trees(TerrainParams{}, 1, p, 4, 0).size(), 1u);
 }
 
 }  // namespace
