@@ -10,19 +10,65 @@
 
 namespace pleinair {
 
+namespace {
+
+// Labels spread evenly over (0, 1) in emission order, then scattered by a stride coprime with
+// the count, so neighbours get unrelated noise.
+struct Labeller {
+    size_t total, stride, next = 0;
+    explicit Labeller(size_t n) : total(std::max<size_t>(n, 1)) {
+        stride = total > 2 ? (total / 2 + 1) | 1u : 1;
+        while (total > 1 && std::gcd(stride, total) != 1) stride += 2;
+    }
+    float operator()() {
+        return static_cast<float>((((next++ * stride) % total) + 0.5) / static_cast<double>(total));
+    }
+};
+
+// One particle at (pos, n) on the surface, drawing its displacement, random normal and fade
+// from `rng` (always the same number of draws, so streams stay aligned).
+void emit_one(Rng& rng, const SurfaceStrokeParams& p, const glm::vec3& pos, const glm::vec3& n,
+              glm::vec2 uv, float label, SurfaceParticles& out) {
+    const double H = std::max(p.displacement_height, 0.0);
+    double d = rand_range(rng, -H, H);
+    float h = H > 0 ? static_cast<float>((d + H) / (2 * H)) : 0.5f;
+    if (!(H > 0)) d = 0;
+    // Uniform on the sphere: z uniform in [-1, 1], angle uniform.
+    double z = rand_range(rng, -1.0, 1.0), a = rand_range(rng, 0.0, 2 * M_PI);
+    double r = std::sqrt(std::max(0.0, 1 - z * z));
+    glm::vec3 rn(static_cast<float>(r * std::cos(a)), static_cast<float>(r * std::sin(a)),
+                 static_cast<float>(z));
+    double fade_draw = rand1(rng), len_draw = rand_gaussian(rng);
+    out.position.push_back(pos + n * static_cast<float>(d));
+    out.normal.push_back(n);
+    out.random_normal.push_back(glm::normalize(rn));
+    out.uv.push_back(uv);
+    out.height.push_back(h);
+    out.material.push_back(p.material);
+    out.label.push_back(label);
+    if (h > p.detail_threshold) {
+        // Detail: fades over [begin, begin + len] inside the distance range 0..1.
+        double len = std::clamp(p.fade_length + p.fade_length_var * len_draw,
+                                std::max(p.min_fade_length, 1e-3), 1.0);
+        double begin = fade_draw * (1 - len);
+        out.fade_begin.push_back(static_cast<float>(begin));
+        out.fade_end.push_back(static_cast<float>(begin + len));
+    } else {
+        // Base strokes never fade: they would open holes in the surface.
+        out.fade_begin.push_back(2.0f);
+        out.fade_end.push_back(3.0f);
+    }
+}
+
+}  // namespace
+
 void emit_surface_strokes(const GridSurface& g, const SurfaceStrokeParams& p, uint64_t seed,
-                          uint64_t surface_key, SurfaceParticles& out) {
+                          uint64_t surface_key, SurfaceParticles& out, const StrokeKeep& keep) {
     if (g.nu < 2 || g.nv < 2 || p.particle_spans_u < 1 || p.particle_spans_v < 1 ||
         p.particles_per_cluster < 1)
         return;
-    const double H = std::max(p.displacement_height, 0.0);
-    const size_t first = out.size();
-    const size_t total = static_cast<size_t>(p.particle_spans_u) * p.particle_spans_v *
-                         static_cast<size_t>(p.particles_per_cluster);
-    // Labels spread evenly over (0, 1) in emission order, then scattered by a stride coprime
-    // with the count, so neighbours get unrelated noise.
-    size_t stride = total > 2 ? (total / 2 + 1) | 1u : 1;
-    while (total > 1 && std::gcd(stride, total) != 1) stride += 2;
+    Labeller label(static_cast<size_t>(p.particle_spans_u) * p.particle_spans_v *
+                   static_cast<size_t>(p.particles_per_cluster));
     for (int sv = 0; sv < p.particle_spans_v; ++sv)
         for (int su = 0; su < p.particle_spans_u; ++su) {
             Rng rng = make_rng(seed, Purpose::kSurface, surface_key, su, sv);
@@ -31,36 +77,40 @@ void emit_surface_strokes(const GridSurface& g, const SurfaceStrokeParams& p, ui
                 double v = (sv + rand1(rng)) / p.particle_spans_v;
                 glm::vec3 pos, n;
                 eval_grid(g, u, v, pos, n);
-                double d = H > 0 ? rand_range(rng, -H, H) : 0.0;
-                float h = H > 0 ? static_cast<float>((d + H) / (2 * H)) : 0.5f;
-                // Uniform on the sphere: z uniform in [-1, 1], angle uniform.
-                double z = rand_range(rng, -1.0, 1.0), a = rand_range(rng, 0.0, 2 * M_PI);
-                double r = std::sqrt(std::max(0.0, 1 - z * z));
-                glm::vec3 rn(static_cast<float>(r * std::cos(a)),
-                             static_cast<float>(r * std::sin(a)), static_cast<float>(z));
-                double fade_draw = rand1(rng), len_draw = rand_gaussian(rng);
-                out.position.push_back(pos + n * static_cast<float>(d));
-                out.normal.push_back(n);
-                out.random_normal.push_back(glm::normalize(rn));
-                out.uv.push_back({static_cast<float>(u), static_cast<float>(v)});
-                out.height.push_back(h);
-                out.material.push_back(p.material);
-                size_t idx = out.label.size() - first;
-                out.label.push_back(static_cast<float>((((idx * stride) % total) + 0.5) / total));
-                if (h > p.detail_threshold) {
-                    // Detail: fades over [begin, begin + len] inside the distance range 0..1.
-                    double len = std::clamp(p.fade_length + p.fade_length_var * len_draw,
-                                            std::max(p.min_fade_length, 1e-3), 1.0);
-                    double begin = fade_draw * (1 - len);
-                    out.fade_begin.push_back(static_cast<float>(begin));
-                    out.fade_end.push_back(static_cast<float>(begin + len));
-                } else {
-                    // Base strokes never fade: they would open holes in the surface.
-                    out.fade_begin.push_back(2.0f);
-                    out.fade_end.push_back(3.0f);
-                }
+                const size_t before = out.size();
+                emit_one(rng, p, pos, n, {static_cast<float>(u), static_cast<float>(v)}, label(),
+                         out);
+                if (keep && !keep(out, before)) out.truncate(before);
             }
         }
+}
+
+void emit_mesh_strokes(const QuadMesh& mesh, const SurfaceStrokeParams& p, uint64_t seed,
+                       uint64_t surface_key, SurfaceParticles& out) {
+    if (p.particle_spans_u < 1 || p.particle_spans_v < 1 || p.particles_per_cluster < 1) return;
+    Labeller label(mesh.quads.size() * p.particle_spans_u * p.particle_spans_v *
+                   static_cast<size_t>(p.particles_per_cluster));
+    for (size_t f = 0; f < mesh.quads.size(); ++f) {
+        // Each face is a bilinear patch: a 2 x 2 grid the section sampler already knows, laid
+        // so the grid's normal faces out of the counter-clockwise quad.
+        GridSurface patch;
+        patch.nu = patch.nv = 2;
+        const glm::uvec4& q = mesh.quads[f];
+        patch.positions = {mesh.positions[q[0]], mesh.positions[q[3]], mesh.positions[q[1]],
+                           mesh.positions[q[2]]};
+        for (int sv = 0; sv < p.particle_spans_v; ++sv)
+            for (int su = 0; su < p.particle_spans_u; ++su) {
+                Rng rng = make_rng(seed, Purpose::kSurface, surface_key, f, su, sv);
+                for (int k = 0; k < p.particles_per_cluster; ++k) {
+                    double u = (su + rand1(rng)) / p.particle_spans_u;
+                    double v = (sv + rand1(rng)) / p.particle_spans_v;
+                    glm::vec3 pos, n;
+                    eval_grid(patch, u, v, pos, n);
+                    emit_one(rng, p, pos, n, {static_cast<float>(u), static_cast<float>(v)},
+                             label(), out);
+                }
+            }
+    }
 }
 
 }  // namespace pleinair

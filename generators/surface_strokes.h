@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <vector>
@@ -37,11 +38,26 @@ struct SurfaceParticles {
     std::vector<float> fade_begin;  // distance value where a detail stroke starts to fade
     std::vector<float> fade_end;    // ... and is gone; > 1 for strokes that never fade
     size_t size() const { return position.size(); }
+    void truncate(size_t n) {
+        position.resize(n), normal.resize(n), random_normal.resize(n), uv.resize(n);
+        height.resize(n), material.resize(n), label.resize(n), fade_begin.resize(n);
+        fade_end.resize(n);
+    }
 };
+
+// Decides whether the particle just emitted at index `i` stays (it may also change its
+// material); dropped particles keep their random draws, so the others do not change.
+using StrokeKeep = std::function<bool(SurfaceParticles&, size_t i)>;
 
 // Pure: streams keyed by (seed, surface_key, span u, span v), so one section's strokes do not
 // depend on the others or on the span counts elsewhere. Appends to `out`.
 void emit_surface_strokes(const GridSurface& surface, const SurfaceStrokeParams& params,
-                          uint64_t seed, uint64_t surface_key, SurfaceParticles& out);
+                          uint64_t seed, uint64_t surface_key, SurfaceParticles& out,
+                          const StrokeKeep& keep = {});
+
+// The same over a quad mesh (rocks, banks): every face is a bilinear patch divided into the
+// params' spans; streams keyed by (seed, surface_key, face, span u, span v).
+void emit_mesh_strokes(const QuadMesh& mesh, const SurfaceStrokeParams& params, uint64_t seed,
+                       uint64_t surface_key, SurfaceParticles& out);
 
 }  // namespace pleinair

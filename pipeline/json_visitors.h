@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -120,12 +121,18 @@ class Reader {
                 (k == "base" ? p.base : p.var) = x.get<double>();
         }
     }
-    void number(const char* key, double& x, Range, const char*, const char*) {
+    void number(const char* key, double& x, Range r, const char*, const char*) {
         const json* v = find(key);
         if (!v) return;
         if (!v->is_number()) return fail(key, "expected a number, got " + describe(*v));
-        x = v->get<double>();
+        const double d = v->get<double>();
+        if (check_ranges_ && !(d >= r.lo && d <= r.hi))
+            return fail(key, "must be in " + format_range(r.lo, r.hi) + ", got " + describe(*v));
+        x = d;
     }
+    // Numbers are checked against their ranges here (scenes); tree presets leave that to
+    // their validator, which knows the per-step ranges.
+    void check_ranges() { check_ranges_ = true; }
     void integer(const char* key, int& x, Range r, const char*) {
         const json* v = find(key);
         if (!v) return;
@@ -150,6 +157,21 @@ class Reader {
             !(*v)[2].is_number())
             return fail(key, "expected three numbers [x, y, z], got " + describe(*v));
         x = {(*v)[0].get<double>(), (*v)[1].get<double>(), (*v)[2].get<double>()};
+    }
+    void seed(const char* key, uint64_t& x, const char*) {
+        const json* v = find(key);
+        if (!v) return;
+        if (!v->is_number_unsigned() &&
+            !(v->is_number_integer() && v->get<int64_t>() >= 0))
+            return fail(key, "expected a whole number >= 0, got " + describe(*v));
+        x = v->get<uint64_t>();
+    }
+    void vector2(const char* key, glm::dvec2& x, const char*, const char*) {
+        const json* v = find(key);
+        if (!v) return;
+        if (!v->is_array() || v->size() != 2 || !(*v)[0].is_number() || !(*v)[1].is_number())
+            return fail(key, "expected two numbers [x, z], got " + describe(*v));
+        x = {(*v)[0].get<double>(), (*v)[1].get<double>()};
     }
     // A float checked against its range here (shader and scene tables have no separate
     // validator).
@@ -184,6 +206,7 @@ class Reader {
         std::vector<std::string> asked;
     };
     std::vector<Frame> frames_;
+    bool check_ranges_ = false;
     std::vector<Problem>& problems_;
     std::set<std::string>& plain_;
 
@@ -235,6 +258,11 @@ class Writer {
     void vector(const char* key, const glm::dvec3& x, const char*, const char*) {
         (*stack_.back())[key] = {x.x, x.y, x.z};
     }
+    void vector2(const char* key, const glm::dvec2& x, const char*, const char*) {
+        (*stack_.back())[key] = {x.x, x.y};
+    }
+    void seed(const char* key, uint64_t x, const char*) { (*stack_.back())[key] = x; }
+    void claim(const char*) {}
     void text(const char* key, const std::string& x, const char*) { (*stack_.back())[key] = x; }
     void real(const char* key, float x, Range, const char*, const char*) {
         (*stack_.back())[key] = x;
@@ -274,6 +302,18 @@ class Documenter {
     }
     void vector(const char* key, const glm::dvec3& x, const char* unit, const char* doc) {
         row(here() + "/" + key, format_vector(x.x, x.y, x.z), "", unit, doc);
+    }
+    void seed(const char* key, uint64_t x, const char* doc) {
+        row(here() + "/" + key, std::to_string(x), "whole number >= 0", "", doc);
+    }
+    void claim(const char*) {}
+    // A row for a key the caller parses itself.
+    void note(const std::string& key, const std::string& def, const char* doc) {
+        row(here() + "/" + key, def, "", "", doc);
+    }
+    void vector2(const char* key, const glm::dvec2& x, const char* unit, const char* doc) {
+        row(here() + "/" + key, "[" + format_number(x.x) + ", " + format_number(x.y) + "]", "",
+            unit, doc);
     }
     void text(const char* key, const std::string& x, const char* doc) {
         row(here() + "/" + key, json(x).dump(), "", "", doc);

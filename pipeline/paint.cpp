@@ -6,13 +6,16 @@
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <memory>
 #include <cmath>
 #include <cstring>
 #include <glm/geometric.hpp>
 #include <limits>
 
 #include "generators/rng.h"
+#include "pipeline/rays.h"
 #include "shading/stroke_kernel.h"
 
 namespace pleinair {
@@ -26,18 +29,23 @@ double ms_since(Clock::time_point t0) {
 
 constexpr int kTile = 64;
 
-struct Material {
+struct SpriteMaterial {
     const StrokeShaderParams* shader = nullptr;
     const Palette* palette = nullptr;
+    const SurfaceShaderParams* surface = nullptr;  // surface materials only
     EdgeTable edge;
 };
+
+enum SpriteKind : uint8_t { kLeaf, kBark, kSurface };
 
 struct Sprite {
     float x = 0, y = 0, depth = 0;
     float half_w = 0, half_l = 0;  // across and along the stroke, pixels
     float ax = 0, ay = 1;          // unit screen direction of the stroke's length
+    float opacity = 1;  // detail strokes fading with distance (IV.7)
     uint32_t material = 0;
     uint32_t object_id = 0;
+    uint8_t kind = kLeaf;
     StrokeConstants k;
 };
 
@@ -107,11 +115,16 @@ struct SpriteInput {
     double length;
     float center_distance, branch_distance, label;
     uint32_t tree_id;
+    float shadow = 1;  // light reaching the particle, 0..1 (IV.4.2)
+    // Surface strokes (IV.7): their own lightness and frequencies, the crest shrink and the
+    // distance fade. Null for leaves and bark.
+    const SurfaceParticles* surface = nullptr;
+    size_t index = 0;
 };
 
 // Projects one particle; returns false if it is culled (behind the camera, not finite, too
 // small, or off screen).
-bool make_sprite(const SceneDesc& scene, const FramePlan& plan, const Material& m, uint32_t mat,
+bool make_sprite(const SceneDesc& scene, const FramePlan& plan, const SpriteMaterial& m, uint32_t mat,
                  const SpriteInput& in, Sprite& out) {
     const Camera& cam = scene.camera;
     const StrokeShaderParams& p = *m.shader;
@@ -121,6 +134,21 @@ bool make_sprite(const SceneDesc& scene, const FramePlan& plan, const Material& 
     float jitter = 1.0f + p.size_jitter * (2.0f * label_hash(in.label, 1) - 1.0f);
     float w = stroke_px(cam, scene.render, in.width * jitter, z);
     float l = stroke_px(cam, scene.render, in.length * jitter, z);
+    float opacity = 1;
+    if (in.surface) {
+        const SurfaceParticles& S = *in.surface;
+        // Fig. 25: a surface seen edge-on keeps only the middle of its sprites' height.
+        glm::vec3 to_eye(glm::normalize(cam.eye - in.world));
+        l *= crest_factor(glm::dot(S.normal[in.index], to_eye), m.surface->crest_shrink);
+        // Detail strokes fade over their own span of the distance value (IV.7).
+        const float fb = S.fade_begin[in.index];
+        if (fb <= 1.0f) {
+            float dv = color_detail::unit_in(static_cast<float>(z), scene.atmosphere.near_distance,
+                                             scene.atmosphere.far_distance);
+            opacity = 1.0f - smoothstep(fb, S.fade_end[in.index], dv);
+            if (!(opacity > 0.0f)) return false;
+        }
+    }
     float min_px = scene.render.min_stroke_px;
     if (w < min_px) l *= min_px / std::max(w, 1e-12f), w = min_px;
     if (!(w > 0.0f) || !(l > 0.0f) || !std::isfinite(w) || !std::isfinite(l)) return false;
@@ -151,11 +179,25 @@ bool make_sprite(const SceneDesc& scene, const FramePlan& plan, const Material& 
         d = distance_value(c.depth, scene.atmosphere.near_distance, scene.atmosphere.far_distance,
                            p.dist_curve_bias);
     out.k = stroke_constants(p, n_dot_l, in.center_distance, in.branch_distance, in.label,
-                             in.tree_id, 1.0f, d, 0.0f, plan.tint && p.unique_tint_amt > 0,
+                             in.tree_id, in.shadow, d, 0.0f,
+                             !in.surface && plan.tint && p.unique_tint_amt > 0,
                              plan.atmosphere && has_atmosphere_effect(p));
+    if (in.surface) {
+        const SurfaceParticles& S = *in.surface;
+        const float h = S.height[in.index];
+        float l = surface_lightness(*m.surface, n_dot_l, h);
+        if (in.shadow < 1.0f) l *= shadow_remap(in.shadow, p.shadow_bias);
+        out.k.lightness = l;
+        surface_frequencies(*m.surface, h, out.k.frequ_s, out.k.frequ_t);
+        out.kind = kSurface;
+        out.object_id = 0x10000u + S.material[in.index];
+    } else {
+        out.kind = glm::dot(in.tangent, in.tangent) > 0 ? kBark : kLeaf;
+        out.object_id = in.tree_id + 1;
+    }
     if (!plan.sub_stroke) out.k.sub_amt = 0;
+    out.opacity = opacity;
     out.material = mat;
-    out.object_id = in.tree_id + 1;
     return true;
 }
 
@@ -237,58 +279,255 @@ FramePlan plan_frame(const SceneDesc& scene, const PaintOptions& options) {
         sub ? "a shader has sub_stroke_amt > 0" : "sub_stroke_amt is 0 in every shader");
     plan.aovs = options.aovs;
     add("aovs", options.aovs, options.aovs ? "asked for (--aovs)" : "not asked for");
+    const bool meshes = scene.terrain.present || !scene.rocks.empty();
+    const bool casters = meshes || !scene.trees.empty();
+    plan.shadows = scene.sun_casts_shadows && casters;
+    add("shadows", plan.shadows,
+        !scene.sun_casts_shadows ? "the sun casts no shadows: no shadow scene, no shadow ray"
+        : casters ? "the sun casts shadows: one ray per particle through the stroke casters"
+                  : "nothing in the scene to cast a shadow");
+    plan.underpaint = meshes;
+    add("underpaint", meshes,
+        meshes ? "terrain or rocks are visible: flat colour and depth under the strokes"
+               : "no visible mesh (no terrain, no rocks)");
     return plan;
 }
 
 Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                   const FramePlan& plan, FrameReport* report) {
+    static const BuiltLandscape kNone;
+    return paint_frame(scene, trees, kNone, plan, report);
+}
+
+Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
+                  const BuiltLandscape& land, const FramePlan& plan, FrameReport* report) {
     const Camera& cam = scene.camera;
     const RenderSettings& rs = scene.render;
     FrameReport local;
     FrameReport& rep = report ? *report : local;
 
-    // Materials: per family, leaves then bark.
-    std::vector<Material> materials(2 * scene.families.size());
-    for (size_t f = 0; f < scene.families.size(); ++f) {
+    // Materials: per family, leaves then bark; then the scene's surface materials.
+    const size_t nf = scene.families.size();
+    std::vector<SpriteMaterial> materials(2 * nf + scene.materials.size());
+    for (size_t f = 0; f < nf; ++f) {
         const Family& fam = scene.families[f];
         for (int kind = 0; kind < 2; ++kind) {
-            Material& m = materials[2 * f + kind];
+            SpriteMaterial& m = materials[2 * f + kind];
             m.shader = kind == 0 ? &fam.leaf_shader : &fam.bark_shader;
             m.palette = kind == 0 ? &fam.leaf_palette : &fam.bark_palette;
             m.edge = make_edge_table(m.shader->stroke_fullness);
         }
     }
+    for (size_t i = 0; i < scene.materials.size(); ++i) {
+        SpriteMaterial& m = materials[2 * nf + i];
+        m.shader = &scene.materials[i].shader;
+        m.palette = &scene.materials[i].palette;
+        m.surface = &scene.materials[i].surface;
+        m.edge = make_edge_table(m.shader->stroke_fullness);
+    }
 
-    // Sprites, per tree in parallel, concatenated in tree order.
-    auto t0 = Clock::now();
-    std::vector<std::vector<Sprite>> per_tree(trees.size());
-    std::vector<uint64_t> culled(trees.size(), 0);
-    tbb::parallel_for(size_t{0}, trees.size(), [&](size_t i) {
+    // Trees in world space: rotation about +y and scale, then the position (in double).
+    struct Placement {
+        double c, s, scale;
+        glm::dvec3 position;
+        glm::dvec3 place(const glm::vec3& p) const {
+            return position + rotate_y(glm::dvec3(p) * scale, c, s);
+        }
+        glm::vec3 turn(const glm::vec3& v) const { return glm::vec3(rotate_y(glm::dvec3(v), c, s)); }
+    };
+    std::vector<Placement> placements(trees.size());
+    for (size_t i = 0; i < trees.size(); ++i) {
         const BuiltTree& b = trees[i];
-        const Family& fam = scene.families[b.family];
-        double c = std::cos(b.rotation * M_PI / 180.0), s = std::sin(b.rotation * M_PI / 180.0);
-        auto place = [&](const glm::vec3& p) {
-            return b.position + rotate_y(glm::dvec3(p) * b.scale, c, s);
-        };
-        auto turn = [&](const glm::vec3& v) { return glm::vec3(rotate_y(glm::dvec3(v), c, s)); };
-        std::vector<Sprite>& out = per_tree[i];
-        const LeafParticles& L = b.tree.leaves;
-        out.reserve(L.size() + (plan.bark ? b.bark.size() : 0));
-        const uint32_t leaf_mat = 2 * b.family, bark_mat = 2 * b.family + 1;
-        if (plan.bark) {
-            const BarkParticles& B = b.bark;
-            const StrokeShaderParams& p = fam.bark_shader;
-            double w = p.sprite_size * fam.params.unit * b.scale;
-            for (size_t j = 0; j < B.size(); ++j) {
-                SpriteInput in{place(B.position[j]),
-                               turn(B.normal[j]),
-                               turn(B.tangent[j]),
+        placements[i] = {std::cos(b.rotation * M_PI / 180.0), std::sin(b.rotation * M_PI / 180.0),
+                         b.scale, b.position};
+    }
+    // A limb mesh placed relative to the tree's position (added back in double by Embree's
+    // anchor offset).
+    auto placed_mesh = [&](size_t i) {
+        QuadMesh m = trees[i].tree.render;
+        for (auto& p : m.positions)
+            p = glm::vec3(placements[i].place(p) - placements[i].position);
+        return m;
+    };
+
+    // Ray scenes, only as the plan asks: the camera's (underpainting and culling of sprites
+    // behind the ground) and the sun's (shadows cast as brush strokes).
+    auto t0 = Clock::now();
+    std::unique_ptr<RayScene> view_rays, sun_rays;
+    const glm::dvec3 anchor = cam.eye;
+    const glm::vec3 sun(scene.sun_direction);
+    // What each camera-scene geometry is painted with underneath: a material index, or -1 for
+    // the terrain (its material varies over it).
+    std::vector<int64_t> view_material;
+    if (plan.underpaint) {
+        view_rays = std::make_unique<RayScene>(anchor);
+        if (land.has_terrain) view_rays->add_mesh(land.terrain_mesh), view_material.push_back(-1);
+        if (land.has_water)
+            view_rays->add_mesh(land.water_mesh),
+                view_material.push_back(static_cast<int64_t>(2 * nf + scene.water.material));
+        for (size_t i = 0; i < land.rocks.size(); ++i)
+            view_rays->add_mesh(land.rocks[i]),
+                view_material.push_back(static_cast<int64_t>(2 * nf + scene.rocks[i].material));
+        for (size_t i = 0; i < trees.size(); ++i)
+            view_rays->add_mesh(placed_mesh(i), placements[i].position),
+                view_material.push_back(static_cast<int64_t>(2 * trees[i].family + 1));
+        view_rays->commit();
+    }
+    if (plan.shadows) {
+        sun_rays = std::make_unique<RayScene>(anchor);
+        // Surfaces that grow grass and rock strokes cast shadows though the camera never sees
+        // them (IV.7); water casts none.
+        if (land.has_terrain) sun_rays->add_mesh(land.terrain_mesh);
+        for (const auto& r : land.rocks) sun_rays->add_mesh(r);
+        for (size_t i = 0; i < trees.size(); ++i)
+            sun_rays->add_mesh(placed_mesh(i), placements[i].position);
+        // Leaf strokes as cards facing the sun, one caster set per family's leaf shader.
+        glm::vec3 ref = std::abs(sun.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+        glm::vec3 a0 = glm::normalize(glm::cross(ref, sun)), b0 = glm::cross(sun, a0);
+        std::vector<std::vector<StrokeCaster>> casters(nf);
+        for (size_t i = 0; i < trees.size(); ++i) {
+            const BuiltTree& b = trees[i];
+            const StrokeShaderParams& p = scene.families[b.family].leaf_shader;
+            const LeafParticles& L = b.tree.leaves;
+            const double w = p.sprite_size * scene.families[b.family].params.unit * b.scale;
+            for (size_t j = 0; j < L.size(); ++j) {
+                StrokeCaster c;
+                c.center = placements[i].place(L.position[j]);
+                const float jitter =
+                    1.0f + p.size_jitter * (2.0f * label_hash(L.label[j], 1) - 1.0f);
+                const double ang = (label_hash(L.label[j], 2) - 0.5) * p.angle_jitter * M_PI / 180;
+                const float ca = static_cast<float>(std::cos(ang)),
+                            sa = static_cast<float>(std::sin(ang));
+                c.axis_s = ca * a0 + sa * b0;
+                c.axis_t = -sa * a0 + ca * b0;
+                c.half_w = static_cast<float>(0.5 * w * jitter);
+                c.half_l = c.half_w * p.stroke_aspect;
+                c.k = stroke_constants(p, glm::dot(placements[i].turn(L.normal[j]), sun),
+                                       L.center_distance[j], L.branch_distance[j], L.label[j],
+                                       L.tree_id[j], 1.0f, 0.0f, 0.0f, false, false);
+                casters[b.family].push_back(c);
+            }
+        }
+        for (size_t f = 0; f < nf; ++f)
+            if (!casters[f].empty())
+                sun_rays->add_casters(std::move(casters[f]), scene.families[f].leaf_shader,
+                                      materials[2 * f].edge);
+        sun_rays->commit();
+    }
+    if (plan.underpaint || plan.shadows)
+        rep.passes.push_back({"ray scenes", true, "Embree scenes the plan asks for", ms_since(t0),
+                              (view_rays ? std::to_string(view_rays->mesh_count()) +
+                                               " meshes for the camera"
+                                         : std::string("no camera scene")) +
+                                  (sun_rays ? ", " + std::to_string(sun_rays->mesh_count()) +
+                                                  " meshes + " +
+                                                  std::to_string(sun_rays->caster_count()) +
+                                                  " stroke casters for the sun"
+                                            : std::string(", no shadow scene"))});
+    const ShadowMode shadow_mode =
+        rs.shadows == "threshold" ? ShadowMode::kThreshold : ShadowMode::kTransmissive;
+    std::atomic<uint64_t> shadow_rays{0}, view_culled{0};
+
+    // Light reaching a particle from the sun, lifted off its surface by `lift` along `n`.
+    auto light_at = [&](const glm::dvec3& world, const glm::vec3* n, float lift) -> float {
+        if (!sun_rays) return 1.0f;
+        ++shadow_rays;
+        glm::dvec3 o = n ? world + glm::dvec3(*n) * static_cast<double>(lift) : world;
+        return sun_rays->transmittance(o, sun, shadow_mode, std::numeric_limits<float>::infinity(),
+                                       n);
+    };
+    // Whether the camera sees the particle past the opaque surfaces (a sprite whose centre lies
+    // behind a hill or a trunk is culled; the sprites in front paint over the silhouette).
+    auto visible = [&](const glm::dvec3& world, const glm::vec3* n, float lift) {
+        if (!view_rays) return true;
+        glm::dvec3 o = n ? world + glm::dvec3(*n) * static_cast<double>(lift) : world;
+        glm::dvec3 to_eye = cam.eye - o;
+        double dist = glm::length(to_eye);
+        if (!(dist > 0)) return true;
+        bool seen = !view_rays->intersect(o, glm::vec3(to_eye / dist),
+                                          static_cast<float>(dist) * 0.999f, n)
+                         .hit;
+        if (!seen) ++view_culled;
+        return seen;
+    };
+
+    // Sprites, per tree in parallel, concatenated in tree order, then the surface strokes in
+    // chunks.
+    double max_displacement = scene.terrain.strokes.displacement_height;
+    max_displacement = std::max(max_displacement, scene.water.strokes.displacement_height);
+    for (const auto& r : scene.rocks)
+        max_displacement = std::max(max_displacement, r.strokes.displacement_height);
+    // Surface strokes are lifted above the deepest strokes, so none is hidden or shadowed by
+    // the very ground it was emitted from.
+    const float surface_lift = 2.0f * static_cast<float>(max_displacement) + 0.01f;
+
+    t0 = Clock::now();
+    constexpr size_t kChunk = 4096;
+    const size_t surface_chunks = (land.strokes.size() + kChunk - 1) / kChunk;
+    std::vector<std::vector<Sprite>> per_item(trees.size() + surface_chunks);
+    std::vector<uint64_t> culled(per_item.size(), 0);
+    tbb::parallel_for(size_t{0}, per_item.size(), [&](size_t i) {
+        FlushDenormals ftz;  // Embree's modes, while this task traces
+        std::vector<Sprite>& out = per_item[i];
+        if (i >= trees.size()) {
+            const size_t begin = (i - trees.size()) * kChunk;
+            const size_t end = std::min(begin + kChunk, land.strokes.size());
+            const SurfaceParticles& S = land.strokes;
+            out.reserve(end - begin);
+            for (size_t j = begin; j < end; ++j) {
+                const uint32_t mat = static_cast<uint32_t>(2 * nf + S.material[j]);
+                const SpriteMaterial& m = materials[mat];
+                const StrokeShaderParams& p = *m.shader;
+                const glm::dvec3 world(S.position[j]);
+                const float lift = surface_lift;
+                if (!visible(world, &S.normal[j], lift)) {
+                    ++culled[i];
+                    continue;
+                }
+                const double w = p.sprite_size * land.size[j] *
+                                 inside_size(S.height[j], m.surface->inside_growth);
+                SpriteInput in{world,
+                               lighting_normal(S.normal[j], S.random_normal[j],
+                                               m.surface->random_normal_weight),
+                               glm::vec3(0, 1, 0),
                                w,
                                w * p.stroke_aspect,
                                0.5f,
                                0.5f,
-                               B.label[j],
-                               b.tree.id};
+                               S.label[j],
+                               0};
+                in.surface = &S;
+                in.index = j;
+                in.shadow = light_at(world, &S.normal[j], lift);
+                Sprite sp;
+                if (make_sprite(scene, plan, m, mat, in, sp))
+                    out.push_back(sp);
+                else
+                    ++culled[i];
+            }
+            return;
+        }
+        const BuiltTree& b = trees[i];
+        const Family& fam = scene.families[b.family];
+        const Placement& pl = placements[i];
+        const LeafParticles& L = b.tree.leaves;
+        out.reserve(L.size() + (plan.bark ? b.bark.size() : 0));
+        const uint32_t leaf_mat = static_cast<uint32_t>(2 * b.family), bark_mat = leaf_mat + 1;
+        if (plan.bark) {
+            const BarkParticles& B = b.bark;
+            const StrokeShaderParams& p = fam.bark_shader;
+            double w = p.sprite_size * fam.params.unit * b.scale;
+            const float lift = static_cast<float>(0.02 * fam.params.unit * b.scale);
+            for (size_t j = 0; j < B.size(); ++j) {
+                const glm::dvec3 world = pl.place(B.position[j]);
+                const glm::vec3 n = pl.turn(B.normal[j]);
+                if (!visible(world, &n, lift)) {
+                    ++culled[i];
+                    continue;
+                }
+                SpriteInput in{world, n,    pl.turn(B.tangent[j]), w, w * p.stroke_aspect, 0.5f,
+                               0.5f,  B.label[j], b.tree.id};
+                in.shadow = light_at(world, &n, lift);
                 Sprite sp;
                 if (make_sprite(scene, plan, materials[bark_mat], bark_mat, in, sp))
                     out.push_back(sp);
@@ -299,10 +538,21 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
         const StrokeShaderParams& p = fam.leaf_shader;
         double w = p.sprite_size * fam.params.unit * b.scale;
         for (size_t j = 0; j < L.size(); ++j) {
-            SpriteInput in{
-                place(L.position[j]), turn(L.normal[j]),    glm::vec3(0.0f),      w,
-                w * p.stroke_aspect,  L.center_distance[j], L.branch_distance[j], L.label[j],
-                L.tree_id[j]};
+            const glm::dvec3 world = pl.place(L.position[j]);
+            if (!visible(world, nullptr, 0.0f)) {
+                ++culled[i];
+                continue;
+            }
+            SpriteInput in{world,
+                           pl.turn(L.normal[j]),
+                           glm::vec3(0.0f),
+                           w,
+                           w * p.stroke_aspect,
+                           L.center_distance[j],
+                           L.branch_distance[j],
+                           L.label[j],
+                           L.tree_id[j]};
+            in.shadow = light_at(world, nullptr, 0.0f);
             Sprite sp;
             if (make_sprite(scene, plan, materials[leaf_mat], leaf_mat, in, sp))
                 out.push_back(sp);
@@ -311,16 +561,25 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
         }
     });
     std::vector<Sprite> sprites;
-    for (size_t i = 0; i < trees.size(); ++i) {
-        for (const Sprite& sp : per_tree[i])
-            (sp.material & 1 ? rep.bark_sprites : rep.leaf_sprites)++;
-        sprites.insert(sprites.end(), per_tree[i].begin(), per_tree[i].end());
+    for (size_t i = 0; i < per_item.size(); ++i) {
+        for (const Sprite& sp : per_item[i])
+            (sp.kind == kLeaf   ? rep.leaf_sprites
+             : sp.kind == kBark ? rep.bark_sprites
+                                : rep.surface_sprites)++;
+        sprites.insert(sprites.end(), per_item[i].begin(), per_item[i].end());
         rep.culled += culled[i];
     }
-    per_tree.clear();
+    per_item.clear();
+    rep.shadow_rays = shadow_rays;
     rep.passes.push_back(
-        {"sprites", true, "every particle faces the camera", ms_since(t0),
-         std::to_string(sprites.size()) + " sprites, " + std::to_string(rep.culled) + " culled"});
+        {"sprites", true,
+         std::string("every particle faces the camera") +
+             (plan.shadows ? "; a shadow ray per particle" : "") +
+             (plan.underpaint ? "; hidden ones culled" : ""),
+         ms_since(t0),
+         std::to_string(sprites.size()) + " sprites, " + std::to_string(rep.culled) +
+             " culled (" + std::to_string(view_culled.load()) + " hidden)" +
+             (plan.shadows ? ", " + std::to_string(rep.shadow_rays) + " shadow rays" : "")});
 
     // Back to front; the index breaks ties so the order is total and thread-independent.
     t0 = Clock::now();
@@ -421,6 +680,89 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                           bg.canvas ? "canvas colour" : "sky and ground seen from the camera",
                           ms_since(t0), ""});
 
+    if (plan.underpaint) {
+        // Underpainting: a flat palette colour and a depth where the camera sees terrain, water,
+        // rocks or trunks, at underpaint_scale of the resolution, so no sky shows through the
+        // gaps between strokes. Coverage is interpolated, so silhouettes stay soft.
+        t0 = Clock::now();
+        const int uw = std::max(1, static_cast<int>(std::ceil(cam.width * rs.underpaint_scale)));
+        const int uh = std::max(1, static_cast<int>(std::ceil(cam.height * rs.underpaint_scale)));
+        const double fx = static_cast<double>(cam.width) / uw, fy = static_cast<double>(cam.height) / uh;
+        std::vector<Color> ucol(static_cast<size_t>(uw) * uh, Color(0.0f));  // premultiplied
+        std::vector<float> ucov(ucol.size(), 0.0f), udepth(ucol.size(), 0.0f);
+        tbb::parallel_for(0, uh, [&](int j) {
+            FlushDenormals ftz;
+            for (int i = 0; i < uw; ++i) {
+                const glm::dvec3 dir = ray_direction(cam, (i + 0.5) * fx, (j + 0.5) * fy);
+                const RayHit h = view_rays->intersect(cam.eye, glm::vec3(dir));
+                if (!h.hit) continue;
+                const glm::dvec3 world = cam.eye + dir * static_cast<double>(h.t);
+                glm::vec3 n = h.normal;
+                if (glm::dot(glm::dvec3(n), dir) > 0) n = -n;
+                const int64_t vm = view_material[h.geometry];
+                const uint32_t mat =
+                    vm >= 0 ? static_cast<uint32_t>(vm)
+                            : static_cast<uint32_t>(2 * nf + terrain_material_at(scene, world));
+                const SpriteMaterial& m = materials[mat];
+                const float n_dot_l = glm::dot(n, sun);
+                // A middle-depth stroke's lightness, a little darker: paint under paint.
+                float l = m.surface ? surface_lightness(*m.surface, n_dot_l, 0.5f)
+                                    : clamp01(n_dot_l);
+                l *= 0.9f;
+                if (plan.shadows) {
+                    float sh = light_at(world, &n, 0.01f);
+                    if (sh < 1.0f) l *= shadow_remap(sh, m.shader->shadow_bias);
+                }
+                const float depth = static_cast<float>(glm::dot(world - cam.eye, cam.forward));
+                float d = 0;
+                if (plan.atmosphere)
+                    d = distance_value(depth, scene.atmosphere.near_distance,
+                                       scene.atmosphere.far_distance, m.shader->dist_curve_bias);
+                StrokeConstants k = stroke_constants(
+                    *m.shader, n_dot_l, 0.5f, 0.5f, 0.5f, 0, 1.0f, d, 0.0f, false,
+                    plan.atmosphere && has_atmosphere_effect(*m.shader));
+                const size_t u = static_cast<size_t>(j) * uw + i;
+                ucol[u] = finish_color(k, palette_lookup(*m.palette, l));
+                ucov[u] = 1.0f;
+                udepth[u] = depth;
+            }
+        });
+        rep.underpaint_rays = static_cast<uint64_t>(uw) * uh;
+        tbb::parallel_for(0, cam.height, [&](int y) {
+            const float sy = std::clamp(static_cast<float>((y + 0.5) / fy - 0.5), 0.0f, uh - 1.0f);
+            const int j0 = static_cast<int>(sy), j1 = std::min(j0 + 1, uh - 1);
+            const float wy = sy - j0;
+            for (int x = 0; x < cam.width; ++x) {
+                const float sx =
+                    std::clamp(static_cast<float>((x + 0.5) / fx - 0.5), 0.0f, uw - 1.0f);
+                const int i0 = static_cast<int>(sx), i1 = std::min(i0 + 1, uw - 1);
+                const float wx = sx - i0;
+                const size_t a = static_cast<size_t>(j0) * uw + i0, b = static_cast<size_t>(j0) * uw + i1,
+                             c = static_cast<size_t>(j1) * uw + i0, d = static_cast<size_t>(j1) * uw + i1;
+                auto lerp = [](float p, float q, float t) { return p + (q - p) * t; };
+                const float cov =
+                    lerp(lerp(ucov[a], ucov[b], wx), lerp(ucov[c], ucov[d], wx), wy);
+                if (!(cov > 0.0f)) continue;
+                const Color col = mix(mix(ucol[a], ucol[b], wx), mix(ucol[c], ucol[d], wx), wy);
+                float* px = &frame.rgba[4 * (static_cast<size_t>(y) * cam.width + x)];
+                // Both premultiplied: the underpainting over the background.
+                px[0] = col.x + px[0] * (1.0f - cov);
+                px[1] = col.y + px[1] * (1.0f - cov);
+                px[2] = col.z + px[2] * (1.0f - cov);
+                if (plan.aovs && cov >= 0.5f) {
+                    const size_t pi = static_cast<size_t>(y) * cam.width + x;
+                    const size_t nearest = static_cast<size_t>(wy < 0.5f ? j0 : j1) * uw +
+                                           static_cast<size_t>(wx < 0.5f ? i0 : i1);
+                    frame.depth[pi] = ucov[nearest] > 0 ? udepth[nearest] : udepth[a];
+                }
+            }
+        });
+        rep.passes.push_back({"underpaint", true,
+                              "flat palette colour where the camera sees a surface",
+                              ms_since(t0),
+                              std::to_string(uw) + "x" + std::to_string(uh) + " camera rays"});
+    }
+
     t0 = Clock::now();
     tbb::parallel_for(size_t{0}, bins.size(), [&](size_t tile) {
         const int tx = static_cast<int>(tile % tiles_x), ty = static_cast<int>(tile / tiles_x);
@@ -429,6 +771,7 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
         uint64_t fragments = 0;
         // Premultiplied "over" of one stroke fragment, and the AOVs of the frontmost stroke.
         auto composite = [&](size_t pi, Color col, float a, const Sprite& sp) {
+            a *= sp.opacity;
             float* px = &frame.rgba[4 * pi];
             float keep = 1.0f - a;
             px[0] = col.x * a + px[0] * keep;
@@ -446,7 +789,7 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
         };
         for (uint32_t idx : bins[tile]) {
             const Sprite& sp = sprites[idx];
-            const Material& m = materials[sp.material];
+            const SpriteMaterial& m = materials[sp.material];
             const StrokeShaderParams& p = *m.shader;
             const StrokeRamp* ramp = ramps.empty() ? nullptr : &ramps[idx];
             const bool edge_lut = rs.edge_lut;

@@ -8,6 +8,7 @@
 
 #include "generators/bark.h"
 #include "generators/tree.h"
+#include "pipeline/landscape.h"
 #include "pipeline/scene.h"
 
 namespace pleinair {
@@ -45,7 +46,8 @@ struct PassReport {
 
 struct FrameReport {
     std::vector<PassReport> passes;
-    uint64_t leaf_sprites = 0, bark_sprites = 0, culled = 0;
+    uint64_t leaf_sprites = 0, bark_sprites = 0, surface_sprites = 0, culled = 0;
+    uint64_t shadow_rays = 0, underpaint_rays = 0;
     uint64_t fragments = 0;  // pixel samples evaluated by the stroke shader
 };
 
@@ -61,6 +63,8 @@ struct FramePlan {
     bool atmosphere = false;  // an atmosphere and some shader with a non-zero distance effect
     bool sub_stroke = false;  // some shader varies colour inside strokes
     bool aovs = false;
+    bool shadows = false;     // the sun casts shadows and something is there to cast them
+    bool underpaint = false;  // a visible mesh (terrain, water, rocks): flat colour under strokes
     // Benchmarks only: each sprite's footprint blended with a constant colour at opacity 0.5
     // instead of shaded, to measure what the shader costs over the bare blend.
     bool bare_blend = false;
@@ -69,6 +73,10 @@ struct FramePlan {
 FramePlan plan_frame(const SceneDesc& scene, const PaintOptions& options);
 
 // Paints the frame. Same inputs, same bytes, on any number of threads.
+Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
+                  const BuiltLandscape& landscape, const FramePlan& plan,
+                  FrameReport* report = nullptr);
+// The same for a scene of trees only.
 Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                   const FramePlan& plan, FrameReport* report = nullptr);
 

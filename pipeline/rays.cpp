@@ -1,10 +1,10 @@
-// Embree device, scene and queries; flush-to-zero and denormals-are-zero in every thread that
-// traces, as Embree asks for speed.
+// Embree device, scenes and queries. Opaque surfaces and stroke casters live in two Embree
+// scenes: a shadow ray first asks the opaque one whether anything blocks it (any hit ends the
+// query), then walks the casters with an occlusion filter that evaluates each stroke's mask.
 #include "pipeline/rays.h"
 
 #include <embree3/rtcore.h>
 #include <pmmintrin.h>
-#include <tbb/task_scheduler_observer.h>
 #include <xmmintrin.h>
 
 #include <algorithm>
@@ -15,48 +15,146 @@
 
 namespace pleinair {
 
-namespace {
-
-void set_ftz_daz() {
+FlushDenormals::FlushDenormals() : saved_(_mm_getcsr()) {
     _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
     _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
 }
 
-// Sets the modes in every TBB worker as it joins, and in the thread that builds the scene.
-class DenormalsOff : public tbb::task_scheduler_observer {
-  public:
-    DenormalsOff() { observe(true); }
-    ~DenormalsOff() override { observe(false); }
-    void on_scheduler_entry(bool) override { set_ftz_daz(); }
-};
-
-}  // namespace
+FlushDenormals::~FlushDenormals() { _mm_setcsr(saved_); }
 
 float ray_epsilon(const glm::dvec3& p) {
     double m = std::max({1.0, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
     return static_cast<float>(32.0 * std::numeric_limits<float>::epsilon() * m);
 }
 
+namespace {
+
+// What the caster filter reads, per caster geometry.
+struct CasterSet {
+    std::vector<StrokeCaster> casters;
+    std::vector<glm::vec3> centers;  // relative to the anchor, as Embree sees them
+    const StrokeShaderParams* shader = nullptr;
+    const EdgeTable* edge = nullptr;
+};
+
+// The filter's per-ray state rides behind Embree's context (Embree's documented way to pass
+// data to callbacks).
+struct ShadowContext {
+    RTCIntersectContext ctx;
+    ShadowMode mode = ShadowMode::kTransmissive;
+    // Optical depth in fixed point (1/65536 of a halving): an integer sum does not depend on
+    // the order Embree reports the cards in, so neither do the bytes of the image.
+    uint64_t depth = 0;
+    bool blocked = false;
+    // Embree may report a primitive more than once (spatial splits): count each card once.
+    static constexpr int kSeen = 32;
+    uint32_t seen[kSeen];
+    int n_seen = 0;
+    int overflow = 0;
+};
+
+constexpr uint64_t kOpaqueDepth = 10 * 65536;  // 2^-10: a thousandth of the light
+
+// Opacity of caster `c` where the ray crosses its card.
+float caster_opacity(const CasterSet& set, uint32_t prim, const glm::vec3& org,
+                     const glm::vec3& dir) {
+    const StrokeCaster& c = set.casters[prim];
+    const glm::vec3 n = glm::cross(c.axis_s, c.axis_t);
+    const float dn = glm::dot(dir, n);
+    if (std::abs(dn) < 1e-12f) return 0.0f;
+    const glm::vec3& center = set.centers[prim];
+    const float t = glm::dot(center - org, n) / dn;
+    const glm::vec3 rel = org + dir * t - center;
+    const float s = 0.5f + 0.5f * glm::dot(rel, c.axis_s) / c.half_w;
+    const float tt = 0.5f + 0.5f * glm::dot(rel, c.axis_t) / c.half_l;
+    if (!(s > 0.0f && s < 1.0f && tt > 0.0f && tt < 1.0f)) return 0.0f;
+    const StrokeShaderParams& p = *set.shader;
+    const float e = edge_mask(*set.edge, s, tt, p.stroke_fullness);
+    if (e <= p.stroke_feather_min) return 0.0f;
+    return stroke_opacity(p, stroke_noise(c.k, s, tt, 1), e);
+}
+
+void caster_filter(const RTCFilterFunctionNArguments* args) {
+    auto* sc = reinterpret_cast<ShadowContext*>(const_cast<RTCIntersectContext*>(args->context));
+    const auto* set = static_cast<const CasterSet*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        const uint32_t prim = RTCHitN_primID(args->hit, args->N, i);
+        bool seen = false;
+        for (int k = 0; k < sc->n_seen; ++k) seen |= sc->seen[k] == prim;
+        if (seen) {
+            args->valid[i] = 0;
+            continue;
+        }
+        if (sc->n_seen < ShadowContext::kSeen)
+            sc->seen[sc->n_seen++] = prim;
+        else
+            ++sc->overflow;
+        const glm::vec3 org(RTCRayN_org_x(args->ray, args->N, i),
+                            RTCRayN_org_y(args->ray, args->N, i),
+                            RTCRayN_org_z(args->ray, args->N, i));
+        const glm::vec3 dir(RTCRayN_dir_x(args->ray, args->N, i),
+                            RTCRayN_dir_y(args->ray, args->N, i),
+                            RTCRayN_dir_z(args->ray, args->N, i));
+        const float a = caster_opacity(*set, prim, org, dir);
+        if (sc->mode == ShadowMode::kThreshold) {
+            if (a > 0.5f) {
+                sc->blocked = true;
+                continue;  // accept: the ray is blocked
+            }
+        } else if (a > 0.0f) {
+            sc->depth += static_cast<uint64_t>(
+                std::lround(-std::log2(std::max(1.0f - a, 1e-6f)) * 65536.0f));
+            if (sc->depth >= kOpaqueDepth) {
+                sc->blocked = true;
+                continue;  // accept: nothing meaningful gets through
+            }
+        }
+        args->valid[i] = 0;  // reject: keep walking through the cards
+    }
+}
+
+void fill_ray(RTCRay& r, const glm::dvec3& world, const glm::dvec3& anchor, const glm::vec3& d,
+              float tmax, const glm::vec3* n) {
+    const float eps = ray_epsilon(world);
+    glm::vec3 o(world - anchor);
+    if (n) o += (glm::dot(*n, d) < 0 ? -*n : *n) * eps;
+    r.org_x = o.x, r.org_y = o.y, r.org_z = o.z;
+    r.dir_x = d.x, r.dir_y = d.y, r.dir_z = d.z;
+    r.tnear = eps;  // the offset along the ray
+    r.tfar = std::max(tmax, eps);
+    r.time = 0;
+    r.mask = 0xFFFFFFFFu;
+    r.id = 0;
+    r.flags = 0;
+}
+
+}  // namespace
+
 struct RayScene::Impl {
     glm::dvec3 anchor;
     RTCDevice device = nullptr;
-    RTCScene scene = nullptr;
+    RTCScene scene = nullptr;    // opaque surfaces
+    RTCScene casters = nullptr;  // stroke cards, created on first use
     uint32_t meshes = 0;
-    DenormalsOff denormals;
+    uint32_t caster_total = 0;
+    std::vector<std::unique_ptr<CasterSet>> sets;
 };
 
 RayScene::RayScene(const glm::dvec3& anchor) : impl_(std::make_unique<Impl>()) {
-    set_ftz_daz();
+    FlushDenormals ftz;
     impl_->anchor = anchor;
     impl_->device = rtcNewDevice(nullptr);
     if (!impl_->device)
         throw std::runtime_error("Embree: cannot create a device (error " +
                                  std::to_string(rtcGetDeviceError(nullptr)) + ")");
     impl_->scene = rtcNewScene(impl_->device);
-    rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+    // Medium: scenes are built once per frame, and high quality costs more than it saves.
+    rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_MEDIUM);
 }
 
 RayScene::~RayScene() {
+    if (impl_->casters) rtcReleaseScene(impl_->casters);
     if (impl_->scene) rtcReleaseScene(impl_->scene);
     if (impl_->device) rtcReleaseDevice(impl_->device);
 }
@@ -83,26 +181,56 @@ uint32_t RayScene::add_mesh(const QuadMesh& mesh, const glm::dvec3& offset) {
     return id;
 }
 
-void RayScene::commit() { rtcCommitScene(impl_->scene); }
+uint32_t RayScene::add_casters(std::vector<StrokeCaster> casters, const StrokeShaderParams& shader,
+                               const EdgeTable& edge) {
+    if (!impl_->casters) {
+        impl_->casters = rtcNewScene(impl_->device);
+        // Medium quality builds without spatial splits: fewer repeated filter calls.
+        rtcSetSceneBuildQuality(impl_->casters, RTC_BUILD_QUALITY_MEDIUM);
+    }
+    auto set = std::make_unique<CasterSet>();
+    set->shader = &shader;
+    set->edge = &edge;
+    set->casters = std::move(casters);
+    const size_t n = set->casters.size();
+    set->centers.resize(n);
+    RTCGeometry g = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_QUAD);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4 * n));
+    auto* q = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), n));
+    for (size_t i = 0; i < n; ++i) {
+        const StrokeCaster& c = set->casters[i];
+        const glm::vec3 center(c.center - impl_->anchor);
+        set->centers[i] = center;
+        const glm::vec3 a = c.axis_s * c.half_w, b = c.axis_t * c.half_l;
+        const glm::vec3 corners[4] = {center - a - b, center + a - b, center + a + b,
+                                      center - a + b};
+        for (int k = 0; k < 4; ++k) {
+            v[12 * i + 3 * k] = corners[k].x;
+            v[12 * i + 3 * k + 1] = corners[k].y;
+            v[12 * i + 3 * k + 2] = corners[k].z;
+            q[4 * i + k] = static_cast<unsigned>(4 * i + k);
+        }
+    }
+    rtcSetGeometryUserData(g, set.get());
+    rtcSetGeometryOccludedFilterFunction(g, caster_filter);
+    rtcCommitGeometry(g);
+    uint32_t id = rtcAttachGeometry(impl_->casters, g);
+    rtcReleaseGeometry(g);
+    impl_->caster_total += static_cast<uint32_t>(n);
+    impl_->sets.push_back(std::move(set));
+    return id;
+}
+
+void RayScene::commit() {
+    FlushDenormals ftz;
+    rtcCommitScene(impl_->scene);
+    if (impl_->casters) rtcCommitScene(impl_->casters);
+}
 
 uint32_t RayScene::mesh_count() const { return impl_->meshes; }
-
-namespace {
-void fill_ray(RTCRay& r, const glm::dvec3& world, const glm::dvec3& anchor, const glm::vec3& d,
-              float tmax, const glm::vec3* n) {
-    const float eps = ray_epsilon(world);
-    glm::vec3 o(world - anchor);
-    if (n) o += (glm::dot(*n, d) < 0 ? -*n : *n) * eps;
-    r.org_x = o.x, r.org_y = o.y, r.org_z = o.z;
-    r.dir_x = d.x, r.dir_y = d.y, r.dir_z = d.z;
-    r.tnear = eps;  // the offset along the ray
-    r.tfar = std::max(tmax, eps);
-    r.time = 0;
-    r.mask = 0xFFFFFFFFu;
-    r.id = 0;
-    r.flags = 0;
-}
-}  // namespace
+uint32_t RayScene::caster_count() const { return impl_->caster_total; }
 
 RayHit RayScene::intersect(const glm::dvec3& origin, const glm::vec3& dir, float tmax,
                            const glm::vec3* n) const {
@@ -127,12 +255,25 @@ RayHit RayScene::intersect(const glm::dvec3& origin, const glm::vec3& dir, float
 
 bool RayScene::occluded(const glm::dvec3& origin, const glm::vec3& dir, float tmax,
                         const glm::vec3* n) const {
+    return transmittance(origin, dir, ShadowMode::kThreshold, tmax, n) < 0.5f;
+}
+
+float RayScene::transmittance(const glm::dvec3& origin, const glm::vec3& dir, ShadowMode mode,
+                              float tmax, const glm::vec3* n) const {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRay r;
     fill_ray(r, origin, impl_->anchor, dir, tmax, n);
     rtcOccluded1(impl_->scene, &ctx, &r);
-    return r.tfar < 0;  // Embree sets tfar to -inf on a hit
+    if (r.tfar < 0) return 0.0f;  // Embree sets tfar to -inf on a hit
+    if (!impl_->casters || impl_->caster_total == 0) return 1.0f;
+    ShadowContext sc;
+    rtcInitIntersectContext(&sc.ctx);
+    sc.mode = mode;
+    fill_ray(r, origin, impl_->anchor, dir, tmax, n);
+    rtcOccluded1(impl_->casters, &sc.ctx, &r);
+    if (r.tfar < 0 || sc.blocked) return 0.0f;
+    return std::exp2(-static_cast<float>(sc.depth) / 65536.0f);
 }
 
 }  // namespace pleinair

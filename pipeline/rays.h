@@ -1,23 +1,39 @@
-// Ray queries against the scene's opaque surfaces (terrain, rocks, trunks) through Embree 3.
-// Geometry is stored relative to an anchor point chosen by the caller (the terrain's centre,
-// say), so a landscape 1e5 units from the origin keeps full float precision in Embree. Ray
-// origins carry the error of whoever computed them in world space, so they are pushed off
-// their surface (along its normal when given, and along the ray) by an epsilon scaled to the
-// magnitude of their world coordinates. Embree stays inside rays.cpp.
+// Ray queries against the scene's surfaces (terrain, water, rocks, trunks) and its brush-stroke
+// shadow casters, through Embree 3. Geometry is stored relative to an anchor point chosen by the
+// caller (the terrain's centre, say), so a landscape 1e5 units from the origin keeps full float
+// precision in Embree. Ray origins carry the error of whoever computed them in world space, so
+// they are pushed off their surface (along its normal when given, and along the ray) by an
+// epsilon scaled to the magnitude of their world coordinates. Embree stays inside rays.cpp.
 #pragma once
 
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <limits>
 #include <memory>
+#include <vector>
 
 #include "generators/quad_mesh.h"
+#include "shading/stroke_shader.h"
 
 namespace pleinair {
 
 // The offset that lifts a ray origin off the surface it starts on: 32 float ulps of its
 // largest world coordinate, never less than those of 1.
 float ray_epsilon(const glm::dvec3& world_point);
+
+// Flush-to-zero and denormals-are-zero for the current thread while in scope (Embree asks for
+// both in every thread that traces); the previous modes come back on exit, so code that runs
+// later on the same worker computes as it would have.
+class FlushDenormals {
+  public:
+    FlushDenormals();
+    ~FlushDenormals();
+    FlushDenormals(const FlushDenormals&) = delete;
+    FlushDenormals& operator=(const FlushDenormals&) = delete;
+
+  private:
+    unsigned saved_;
+};
 
 struct RayHit {
     bool hit = false;
@@ -26,6 +42,20 @@ struct RayHit {
     uint32_t primitive = 0;
     glm::vec3 normal{0.0f};  // unit, geometric, facing the ray's origin side as built
 };
+
+// A leaf stroke as a shadow caster: a square-ish card facing the sun whose opacity is the same
+// stroke mask the painter draws (IV.4.2: shadows fall as brush strokes, never as squares).
+struct StrokeCaster {
+    glm::dvec3 center{0.0};      // world
+    glm::vec3 axis_s{1, 0, 0};   // unit, across the stroke
+    glm::vec3 axis_t{0, 1, 0};   // unit, along it; both perpendicular to the sun
+    float half_w = 0.5f, half_l = 0.5f;  // world units
+    StrokeConstants k;           // noise frequencies and offsets of the stroke
+};
+
+// How a shadow ray treats stroke casters: the opacity of the first card decides (above one
+// half: shadow), or the light is attenuated by every card it crosses.
+enum class ShadowMode { kThreshold, kTransmissive };
 
 class RayScene {
   public:
@@ -36,19 +66,32 @@ class RayScene {
 
     // Copies the mesh (world positions, placed by `offset`) into Embree; returns its id.
     uint32_t add_mesh(const QuadMesh& mesh, const glm::dvec3& offset = glm::dvec3(0.0));
-    // Builds the acceleration structure; call once after the last add_mesh.
+    // Adds stroke casters, evaluated by an occlusion filter with the given stroke parameters
+    // (which must outlive the scene). Returns the geometry id; primitive i is casters[i].
+    uint32_t add_casters(std::vector<StrokeCaster> casters, const StrokeShaderParams& shader,
+                         const EdgeTable& edge);
+    // Builds the acceleration structure; call once after the last add.
     void commit();
     uint32_t mesh_count() const;
+    uint32_t caster_count() const;
 
     // Nearest hit along a unit direction, within tmax. `surface_normal`, if the origin lies
-    // on a surface, is the direction it is lifted along (flipped to the ray's side).
+    // on a surface, is the direction it is lifted along (flipped to the ray's side). Stroke
+    // casters are invisible to this query.
     RayHit intersect(const glm::dvec3& origin, const glm::vec3& direction,
                      float tmax = std::numeric_limits<float>::infinity(),
                      const glm::vec3* surface_normal = nullptr) const;
-    // Whether anything lies along the direction within tmax (a shadow ray).
+    // Whether anything opaque lies along the direction within tmax; casters count as their
+    // stroke mask thresholded at one half.
     bool occluded(const glm::dvec3& origin, const glm::vec3& direction,
                   float tmax = std::numeric_limits<float>::infinity(),
                   const glm::vec3* surface_normal = nullptr) const;
+    // The light that gets through along the direction: 0 behind an opaque surface, else the
+    // product of (1 - stroke opacity) over the casters crossed (kTransmissive) or 0/1 by the
+    // threshold (kThreshold).
+    float transmittance(const glm::dvec3& origin, const glm::vec3& direction, ShadowMode mode,
+                        float tmax = std::numeric_limits<float>::infinity(),
+                        const glm::vec3* surface_normal = nullptr) const;
 
   private:
     struct Impl;

@@ -16,6 +16,96 @@ using namespace json_detail;
 namespace {
 
 template <class V>
+void visit_strokes(SurfaceStrokeParams& p, V& v) {
+    v.object("strokes", "The generalized stroke builder (IV.7, Fig. 24)", [&] {
+        v.integer("particle_spans_u", p.particle_spans_u, {1, 4096},
+                  "Sections along u; particles are emitted at random inside each.");
+        v.integer("particle_spans_v", p.particle_spans_v, {1, 4096}, "Sections along v.");
+        v.integer("particles_per_cluster", p.particles_per_cluster, {1, 4096},
+                  "Particles emitted per section.");
+        v.number("displacement_height", p.displacement_height, {0, 1e4}, "world units",
+                 "Strokes sit up to this far above or below the surface.");
+        v.number("fade_length", p.fade_length, {0, 1}, "distance value",
+                 "Span over which a detail stroke fades (\"Fadeoff Length\").");
+        v.number("fade_length_var", p.fade_length_var, {0, 1}, "",
+                 "Gaussian deviation of that span.");
+        v.number("min_fade_length", p.min_fade_length, {0, 1}, "",
+                 "Shortest span (\"MIN fadeoff length\").");
+    });
+}
+
+template <class T, class V>
+void visit_terrain(T& t, V& v) {
+    v.seed("seed", t.seed, "Seeds the terrain's noise and its strokes.");
+    auto& p = t.params;
+    v.vector2("min", p.min, "world units", "Corner (x, z) of the terrain.");
+    v.vector2("max", p.max, "world units", "Opposite corner.");
+    v.integer("resolution", p.resolution, {2, 4097}, "Grid points along each side.");
+    v.number("base_height", p.base_height, {-1e9, 1e9}, "world units", "Height of the plain.");
+    v.number("noise_amplitude", p.noise_amplitude, {0, 1e6}, "world units",
+             "Peak-to-peak height of the fractal noise over the hills.");
+    v.number("noise_frequency", p.noise_frequency, {0, 1e3}, "1/world unit",
+             "Frequency of that noise.");
+    v.integer("noise_octaves", p.noise_octaves, {1, 8}, "Octaves of that noise.");
+    v.text("material", t.material_name, "Material of the ground's strokes (/materials).");
+    v.text("second_material", t.second_material_name,
+           "Material where the noise below is over material_threshold (grass and dirt on one "
+           "hillside); empty: none.");
+    v.real("material_noise_frequency", t.material_noise_frequency, {0, 1e4}, "cycles",
+           "Frequency of the noise that picks the second material, over the terrain.");
+    v.real("material_threshold", t.material_threshold, {0, 1}, "",
+           "Noise above which the second material is used.");
+    v.text("bank_material", t.bank_material_name,
+           "Material of the ground within bank_height above the water; empty: none.");
+    v.number("bank_height", t.bank_height, {0, 1e6}, "world units", "Height of that bank.");
+}
+
+template <class V>
+void visit_hill(Hill& h, V& v) {
+    v.text("name", h.name, "A name, for the reader of the file.");
+    v.vector2("center", h.center, "world units", "(x, z) of the summit.");
+    v.number("radius", h.radius, {0, 1e9}, "world units", "Where the hill meets the plain.");
+    v.number("height", h.height, {-1e6, 1e6}, "world units",
+             "Height of the summit over the plain; negative digs a hollow (a pond).");
+}
+
+template <class V>
+void visit_water(WaterDesc& w, V& v) {
+    v.number("level", w.level, {-1e9, 1e9}, "world units",
+             "Height of the still water; painted where the ground lies below it.");
+    v.text("material", w.material_name, "Material of its strokes.");
+}
+
+template <class V>
+void visit_rock(RockDesc& r, V& v) {
+    v.seed("seed", r.seed, "Seeds the rock's shape and strokes.");
+    v.vector("position", r.position, "world units",
+             "Centre; with a terrain, y is the height above the ground.");
+    v.number("radius", r.params.radius, {0, 1e6}, "world units", "Size before the squash.");
+    v.vector("scale", r.params.scale, "", "Squash along x, y and z.");
+    v.number("roughness", r.params.roughness, {0, 0.9}, "",
+             "Radial displacement by noise, as a fraction of the radius.");
+    v.number("noise_frequency", r.params.noise_frequency, {0, 1e3}, "1/radius",
+             "Frequency of that noise.");
+    v.integer("subdivision_levels", r.params.subdivision_levels, {0, 5},
+              "Catmull-Clark levels of the rock mesh (6 x 4^levels faces).");
+    v.text("material", r.material_name, "Material of its strokes.");
+}
+
+template <class V>
+void visit_group(TreeGroup& g, V& v) {
+    ScatterParams& p = g.params;
+    v.seed("seed", g.seed, "Seeds the placement and each tree's own seed.");
+    v.vector2("center", p.center, "world units", "(x, z) of the disc the trees stand in.");
+    v.number("radius", p.radius, {0, 1e7}, "world units", "Radius of that disc.");
+    v.number("min_distance", p.min_distance, {1e-3, 1e7}, "world units",
+             "Least distance between two trunks (Poisson-disk radius).");
+    v.number("max_slope", p.max_slope, {0, 90}, "deg", "No tree on steeper ground.");
+    v.number("scale_var", p.scale_var, {0, 1}, "", "Relative size variation (gaussian).");
+    v.integer("max_trees", p.max_trees, {0, 100000}, "At most this many trees.");
+}
+
+template <class V>
 void visit_scene(SceneDesc& s, V& v) {
     v.text("description", s.description, "One line on what the scene shows.");
     CameraParams& c = s.camera_params;
@@ -31,6 +121,9 @@ void visit_scene(SceneDesc& s, V& v) {
     });
     v.object("sun", "The one light (IV.4.1)", [&] {
         v.vector("direction", s.sun_direction, "", "Direction towards the sun; normalised.");
+        v.boolean("casts_shadows", s.sun_casts_shadows,
+                  "Trace shadow rays: trunks, terrain, rocks and the leaf strokes themselves "
+                  "cast shadows as brush strokes (IV.4.2). Off: no shadow geometry is built.");
     });
     Background& b = s.background;
     v.object("background", "What shows where no stroke covers the canvas", [&] {
@@ -51,6 +144,17 @@ void visit_scene(SceneDesc& s, V& v) {
         v.real("far", s.atmosphere.far_distance, {0, 1e9}, "world units",
                "View depth where it is full.");
     });
+    v.object("terrain", "The ground: hills and noise, painted as strokes (IV.7); absent: none", [&] {
+        s.terrain.present = true;
+        visit_terrain(s.terrain, v);
+        v.claim("hills");
+        visit_strokes(s.terrain.strokes, v);
+    });
+    v.object("water", "Still water in the terrain's hollows; absent: none", [&] {
+        s.water.present = true;
+        visit_water(s.water, v);
+        visit_strokes(s.water.strokes, v);
+    });
     RenderSettings& r = s.render;
     v.object("render", "Painter settings", [&] {
         v.real("stroke_perspective", r.stroke_perspective, {0, 1}, "",
@@ -69,6 +173,15 @@ void visit_scene(SceneDesc& s, V& v) {
                   "Read the stroke edge mask from a 256-entry table instead of sin and pow.");
         v.real("bark_coverage", r.bark_coverage, {0, 100}, "",
                "Bark strokes' total area over the limbs' lateral area.");
+        v.text("shadows", r.shadows,
+               "How leaf strokes shadow: \"transmissive\" (light dimmed by every stroke crossed) "
+               "or \"threshold\" (a stroke blocks where its mask is over one half).");
+        v.real("underpaint_scale", r.underpaint_scale, {0.05, 1}, "",
+               "Resolution of the underpainting (flat colour under the strokes) over the "
+               "image's.");
+        v.real("surface_density", r.surface_density, {0.05, 16}, "",
+               "Surface particles per cluster, relative to the scene's; sprites shrink so the "
+               "covered area stays the same.");
     });
 }
 
@@ -111,6 +224,190 @@ std::string near_scene(const std::string& name, const std::string& source) {
     return (std::filesystem::path(source).parent_path() / p).string();
 }
 
+// Index of the material called `name`, or a problem at `ptr` naming those there are.
+int32_t find_material(const SceneDesc& s, const std::string& name, const std::string& ptr,
+                      std::vector<Problem>& problems) {
+    for (size_t i = 0; i < s.materials.size(); ++i)
+        if (s.materials[i].name == name) return static_cast<int32_t>(i);
+    std::string names;
+    for (const auto& m : s.materials) names += (names.empty() ? "" : ", ") + m.name;
+    problems.push_back({ptr, "no material \"" + name + "\" in /materials (have: " +
+                                 (names.empty() ? "none" : names) + ")"});
+    return -1;
+}
+
+// Materials, terrain, water and rocks: the landscape under the trees (IV.7).
+void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
+                     std::vector<Problem>& problems, std::set<std::string>& plain) {
+    if (auto it = doc.find("materials"); it != doc.end()) {
+        if (!it->is_object()) {
+            problems.push_back({"/materials", "expected an object of materials, got " +
+                                                  describe(*it)});
+        } else {
+            for (const auto& [name, m] : it->items()) {
+                std::string ptr = "/materials/" + name;
+                if (!m.is_object()) {
+                    problems.push_back({ptr, "expected an object, got " + describe(m)});
+                    continue;
+                }
+                std::string shader, palette;
+                Reader r(m, problems, plain, ptr);
+                r.check_ranges();
+                r.text("shader", shader, "");
+                r.text("palette", palette, "");
+                r.finish();
+                Material mat;
+                mat.name = name;
+                if (shader.empty()) {
+                    problems.push_back({ptr + "/shader", "missing: a shader preset name or file"});
+                    s.materials.push_back(std::move(mat));
+                    continue;
+                }
+                load_into(problems, source, ptr + "/shader", [&] {
+                    ShaderPreset sp =
+                        load_shader_preset(near_scene(shader, source), source, ptr + "/shader");
+                    if (!sp.has_surface)
+                        throw InputError(source, ptr + "/shader",
+                                         "shader \"" + shader +
+                                             "\" has no \"surface\" section; surface materials "
+                                             "need one");
+                    mat.shader = sp.params;
+                    mat.surface = sp.surface;
+                    std::string pal = palette.empty() ? sp.palette : palette;
+                    if (pal.empty())
+                        throw InputError(source, ptr + "/palette",
+                                         "the shader names no palette; give one here");
+                    load_into(problems, source, ptr + "/palette", [&] {
+                        mat.palette = shader_palette(
+                            load_palette(near_scene(pal, source), source, ptr + "/palette"),
+                            mat.shader);
+                    });
+                });
+                s.materials.push_back(std::move(mat));
+            }
+        }
+    }
+    auto material = [&](const std::string& name, const std::string& ptr) {
+        return static_cast<uint32_t>(std::max(0, find_material(s, name, ptr, problems)));
+    };
+
+    if (s.terrain.present) {
+        TerrainDesc& t = s.terrain;
+        for (int k = 0; k < 2; ++k)
+            if (!(t.params.max[k] > t.params.min[k]))
+                problems.push_back({"/terrain/max", "must be greater than /terrain/min in x and z"});
+        const json& tj = doc["terrain"];
+        if (auto hills = tj.find("hills"); hills != tj.end()) {
+            if (!hills->is_array()) {
+                problems.push_back({"/terrain/hills", "expected a list, got " + describe(*hills)});
+            } else {
+                for (size_t i = 0; i < hills->size(); ++i) {
+                    std::string ptr = "/terrain/hills/" + std::to_string(i);
+                    const json& h = (*hills)[i];
+                    if (!h.is_object()) {
+                        problems.push_back({ptr, "expected an object, got " + describe(h)});
+                        continue;
+                    }
+                    Hill hill;
+                    Reader hr(h, problems, plain, ptr);
+                    hr.check_ranges();
+                    visit_hill(hill, hr);
+                    hr.finish();
+                    t.params.hills.push_back(hill);
+                }
+            }
+        }
+        t.material = material(t.material_name, "/terrain/material");
+        if (!t.second_material_name.empty())
+            t.second_material =
+                find_material(s, t.second_material_name, "/terrain/second_material", problems);
+        if (!t.bank_material_name.empty())
+            t.bank_material =
+                find_material(s, t.bank_material_name, "/terrain/bank_material", problems);
+    }
+    if (s.water.present) {
+        if (!s.terrain.present) problems.push_back({"/water", "water needs a /terrain to lie in"});
+        s.water.material = material(s.water.material_name, "/water/material");
+    }
+
+    if (auto it = doc.find("rocks"); it != doc.end()) {
+        if (!it->is_array()) {
+            problems.push_back({"/rocks", "expected a list of rocks, got " + describe(*it)});
+        } else {
+            for (size_t i = 0; i < it->size(); ++i) {
+                std::string ptr = "/rocks/" + std::to_string(i);
+                const json& j = (*it)[i];
+                if (!j.is_object()) {
+                    problems.push_back({ptr, "expected an object, got " + describe(j)});
+                    continue;
+                }
+                RockDesc rock;
+                rock.strokes.particle_spans_u = rock.strokes.particle_spans_v = 1;
+                rock.strokes.particles_per_cluster = 3;
+                Reader r(j, problems, plain, ptr);
+                r.check_ranges();
+                visit_rock(rock, r);
+                visit_strokes(rock.strokes, r);
+                r.finish();
+                rock.material = material(rock.material_name, ptr + "/material");
+                s.rocks.push_back(rock);
+            }
+        }
+    }
+}
+
+// Groups scattered over the terrain; each names families with weights.
+void parse_groups(const json& doc, SceneDesc& s, std::vector<Problem>& problems,
+                  std::set<std::string>& plain) {
+    auto it = doc.find("groups");
+    if (it == doc.end()) return;
+    if (!it->is_array()) {
+        problems.push_back({"/groups", "expected a list of tree groups, got " + describe(*it)});
+        return;
+    }
+    if (!s.terrain.present) problems.push_back({"/groups", "tree groups need a /terrain"});
+    for (size_t i = 0; i < it->size(); ++i) {
+        std::string ptr = "/groups/" + std::to_string(i);
+        const json& j = (*it)[i];
+        if (!j.is_object()) {
+            problems.push_back({ptr, "expected an object, got " + describe(j)});
+            continue;
+        }
+        TreeGroup g;
+        g.params.weights.clear();
+        Reader r(j, problems, plain, ptr);
+        r.check_ranges();
+        visit_group(g, r);
+        r.claim("families");
+        r.finish();
+        auto fam = j.find("families");
+        if (fam == j.end() || !fam->is_object() || fam->empty()) {
+            problems.push_back({ptr + "/families",
+                                "expected an object of family names to weights, e.g. "
+                                "{\"oak\": 2, \"poplar\": 1}"});
+            continue;
+        }
+        for (const auto& [name, w] : fam->items()) {
+            std::string fptr = ptr + "/families/" + name;
+            if (!w.is_number() || !(w.get<double>() >= 0)) {
+                problems.push_back({fptr, "expected a weight >= 0, got " + describe(w)});
+                continue;
+            }
+            bool found = false;
+            for (size_t k = 0; k < s.families.size(); ++k)
+                if (s.families[k].name == name) {
+                    g.families.push_back(static_cast<uint32_t>(k));
+                    g.params.weights.push_back(w.get<double>());
+                    found = true;
+                }
+            if (!found) problems.push_back({fptr, "no family \"" + name + "\" in /families"});
+        }
+        // No tree with its feet in the water.
+        if (s.water.present) g.params.water_level = s.water.level + 0.05;
+        if (!g.families.empty()) s.groups.push_back(std::move(g));
+    }
+}
+
 }  // namespace
 
 SceneDesc parse_scene(const std::string& text, const std::string& source,
@@ -121,10 +418,12 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
     SceneDesc s;
     std::set<std::string> plain;
     Reader reader(doc, problems, plain);
+    reader.check_ranges();
     visit_scene(s, reader);
-    reader.claim("families");
-    reader.claim("trees");
+    for (const char* key : {"families", "trees", "materials", "rocks", "groups"})
+        reader.claim(key);
     reader.finish();
+    parse_landscape(doc, source, s, problems, plain);
 
     if (std::string why = make_camera(s.camera_params, s.camera); !why.empty())
         problems.push_back({"/camera", why});
@@ -157,6 +456,7 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
             std::string leaf_shader = "corot-leaves", bark_shader = "corot-bark";
             std::string leaf_palette, bark_palette;
             Reader r(f, problems, plain, ptr);
+            r.check_ranges();
             r.text("preset", family.preset, "");
             r.text("leaf_shader", leaf_shader, "");
             r.text("bark_shader", bark_shader, "");
@@ -209,6 +509,7 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
             PlacedTree placed;
             std::string family;
             Reader r(t, problems, plain, ptr);
+            r.check_ranges();
             r.text("family", family, "");
             r.claim("seed");
             r.vector("position", placed.position, "", "");
@@ -220,8 +521,6 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
             if (!(placed.scale > 0))
                 problems.push_back(
                     {ptr + "/scale", "must be > 0, got " + format_number(placed.scale)});
-            if (!(std::abs(placed.rotation) <= 1e6))
-                problems.push_back({ptr + "/rotation", "must be in [-1e6, 1e6]"});
             bool found = false;
             for (size_t k = 0; k < s.families.size(); ++k)
                 if (s.families[k].name == family)
@@ -236,8 +535,36 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
             s.trees.push_back(placed);
         }
     }
+    if (s.render.shadows != "transmissive" && s.render.shadows != "threshold")
+        problems.push_back({"/render/shadows", "expected \"transmissive\" or \"threshold\", got \"" +
+                                                   s.render.shadows + "\""});
+    parse_groups(doc, s, problems, plain);
     mark_overrides(problems, overridden);
     if (!problems.empty()) throw InputError(source, problems);
+
+    // With a terrain, an explicit tree's or rock's y is its height above the ground; groups
+    // are scattered over it after the explicit trees.
+    s.explicit_trees = s.trees.size();
+    if (s.terrain.present) {
+        auto ground = [&](double x, double z) {
+            return terrain_height(s.terrain.params, s.terrain.seed, x, z);
+        };
+        for (auto& t : s.trees) t.position.y += ground(t.position.x, t.position.z);
+        for (auto& r : s.rocks) r.position.y += ground(r.position.x, r.position.z);
+        for (size_t i = 0; i < s.groups.size(); ++i) {
+            const TreeGroup& g = s.groups[i];
+            for (const ScatteredTree& st :
+                 scatter_trees(s.terrain.params, s.terrain.seed, g.params, g.seed, i)) {
+                PlacedTree pt;
+                pt.family = g.families[st.family];
+                pt.seed = st.seed;
+                pt.position = st.position;
+                pt.rotation = st.rotation;
+                pt.scale = st.scale;
+                s.trees.push_back(pt);
+            }
+        }
+    }
     return s;
 }
 
@@ -250,6 +577,22 @@ std::string scene_reference() {
     d.out << "| key | default | range | unit | meaning |\n|---|---|---|---|---|\n";
     SceneDesc defaults;
     visit_scene(defaults, d);
+    d.object("terrain/hills/N", "One hill of the terrain's list", [&] {
+        Hill h;
+        visit_hill(h, d);
+    });
+    d.object("rocks/N", "One rock of the list: a displaced mesh painted with strokes", [&] {
+        RockDesc r;
+        r.strokes.particle_spans_u = r.strokes.particle_spans_v = 1;
+        r.strokes.particles_per_cluster = 3;
+        visit_rock(r, d);
+        visit_strokes(r.strokes, d);
+    });
+    d.object("groups/N", "One group of trees scattered over the terrain (Poisson disk)", [&] {
+        TreeGroup g;
+        visit_group(g, d);
+        d.note("families", "", "Family names to relative weights, e.g. {\"oak\": 2, \"poplar\": 1}.");
+    });
     return d.out.str();
 }
 

@@ -7,10 +7,15 @@
 #include <string>
 #include <vector>
 
+#include "generators/rock.h"
+#include "generators/scatter.h"
+#include "generators/surface_strokes.h"
+#include "generators/terrain.h"
 #include "generators/tree_params.h"
 #include "pipeline/camera.h"
 #include "shading/color.h"
 #include "shading/stroke_shader.h"
+#include "shading/surface_shader.h"
 
 namespace pleinair {
 
@@ -43,6 +48,59 @@ struct RenderSettings {
     bool edge_lut = true;             // the edge mask from a table instead of sin and pow
     bool filter_strokes = true;       // at 1 sample per pixel, widen the feather by its footprint
     float bark_coverage = 2.5f;       // bark strokes' area over the limbs' area
+    std::string shadows = "transmissive";  // "threshold": a card blocks where its mask > 1/2
+    float underpaint_scale = 0.5f;         // underpainting resolution over the image's
+    float surface_density = 1.0f;          // surface particles per cluster, relative
+};
+
+// A named look for surface strokes (grass, dirt, rock, water): a stroke shader with IV.7's
+// surface section and a palette; materials share palettes (IV.7's material functions).
+struct Material {
+    std::string name;
+    StrokeShaderParams shader;
+    SurfaceShaderParams surface;
+    Palette palette;
+};
+
+// The ground: a heightfield turned into strokes. Its material comes from noise (grass and
+// dirt on one hillside) and from a mask (the bank just above the water).
+struct TerrainDesc {
+    bool present = false;
+    uint64_t seed = 1;
+    TerrainParams params;
+    SurfaceStrokeParams strokes;
+    std::string material_name = "grass", second_material_name, bank_material_name;
+    uint32_t material = 0;                 // index into SceneDesc::materials
+    int32_t second_material = -1;          // chosen where noise > material_threshold
+    float material_noise_frequency = 6;    // cycles over the terrain
+    float material_threshold = 0.62f;
+    int32_t bank_material = -1;            // within bank_height above the water
+    double bank_height = 0.4;
+};
+
+// Still water: a level plane painted where the ground lies below it.
+struct WaterDesc {
+    bool present = false;
+    double level = 0;
+    SurfaceStrokeParams strokes;
+    std::string material_name = "water";
+    uint32_t material = 0;
+};
+
+struct RockDesc {
+    RockParams params;
+    uint64_t seed = 1;
+    glm::dvec3 position{0.0};  // with a terrain, y is the height above the ground
+    SurfaceStrokeParams strokes;  // spans are per face of the rock mesh
+    std::string material_name = "rock";
+    uint32_t material = 0;
+};
+
+// Trees scattered over the terrain (Poisson disk), a weighted mix of families.
+struct TreeGroup {
+    ScatterParams params;          // weights: one per entry of `families`
+    std::vector<uint32_t> families;
+    uint64_t seed = 1;
 };
 
 struct Family {
@@ -66,12 +124,19 @@ struct SceneDesc {
     CameraParams camera_params;
     Camera camera;
     glm::dvec3 sun_direction{-0.5, 0.8, 0.4};  // towards the sun, unit
+    bool sun_casts_shadows = false;
     Background background;
     bool has_atmosphere = false;
     Atmosphere atmosphere;
     RenderSettings render;
     std::vector<Family> families;
-    std::vector<PlacedTree> trees;
+    std::vector<PlacedTree> trees;  // explicit trees, then the groups' scattered ones
+    size_t explicit_trees = 0;
+    std::vector<Material> materials;
+    TerrainDesc terrain;
+    WaterDesc water;
+    std::vector<RockDesc> rocks;
+    std::vector<TreeGroup> groups;
 };
 
 // Throws InputError listing every problem (file, JSON pointer, expected, found).

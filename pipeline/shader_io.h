@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "shading/stroke_shader.h"
+#include "shading/surface_shader.h"
 
 namespace pleinair {
 
@@ -13,6 +14,10 @@ struct ShaderPreset {
     std::string description;
     std::string palette;  // name or file of the palette whose splines this shader reads
     StrokeShaderParams params;
+    // IV.7's generalized stroke shader (grass, rock, ground, water): read from the preset's
+    // optional "surface" section; only surface materials use it.
+    SurfaceShaderParams surface;
+    bool has_surface = false;
 };
 
 // Starts from StrokeShaderParams' defaults and overrides the keys present. Throws InputError.

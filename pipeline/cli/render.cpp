@@ -31,10 +31,11 @@ int run_render(const RenderCommand& cmd) {
     FrameReport report;
     auto t0 = Clock::now();
     std::vector<BuiltTree> trees = build_trees(scene, plan.bark);
+    BuiltLandscape land = build_landscape(scene);
     double gen_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     size_t leaves = 0, bark = 0;
     for (const auto& t : trees) leaves += t.tree.leaves.size(), bark += t.bark.size();
-    Frame frame = paint_frame(scene, trees, plan, &report);
+    Frame frame = paint_frame(scene, trees, land, plan, &report);
 
     t0 = Clock::now();
     if (fs::path parent = fs::path(cmd.out).parent_path(); !parent.empty())
@@ -54,15 +55,20 @@ int run_render(const RenderCommand& cmd) {
             else
                 std::printf("  %-18s   skipped     %s\n", name.c_str(), why.c_str());
         };
-        line("generate", true, "trees grown from their presets", gen_ms,
-             std::to_string(leaves) + " leaves, " + std::to_string(bark) + " bark strokes");
+        line("generate", true, "trees grown from their presets, surfaces turned into strokes",
+             gen_ms,
+             std::to_string(trees.size()) + " trees, " + std::to_string(leaves) + " leaves, " +
+                 std::to_string(bark) + " bark strokes, " +
+                 std::to_string(land.strokes.size()) + " surface strokes");
         for (const auto& d : plan.decisions) line(d.name, d.ran, d.why, 0, "");
         for (const auto& p : report.passes) line(p.name, p.ran, p.why, p.ms, p.counts);
         line("output", true, "written through OpenImageIO, renamed when complete", out_ms, cmd.out);
-        std::printf("  %-18s %9.1f ms  %llu leaf + %llu bark sprites, %llu fragments\n", "total",
-                    total_ms, static_cast<unsigned long long>(report.leaf_sprites),
-                    static_cast<unsigned long long>(report.bark_sprites),
-                    static_cast<unsigned long long>(report.fragments));
+        std::printf(
+            "  %-18s %9.1f ms  %llu leaf + %llu bark + %llu surface sprites, %llu fragments\n",
+            "total", total_ms, static_cast<unsigned long long>(report.leaf_sprites),
+            static_cast<unsigned long long>(report.bark_sprites),
+            static_cast<unsigned long long>(report.surface_sprites),
+            static_cast<unsigned long long>(report.fragments));
     } else {
         std::printf("painted %s (%dx%d) in %.2f s\n", cmd.out.c_str(), frame.width, frame.height,
                     total_ms / 1000.0);

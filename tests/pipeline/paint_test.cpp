@@ -95,7 +95,7 @@ TEST(Paint, PlanSkipsWhatTheSceneDoesNotNeed) {
     EXPECT_FALSE(plan.bark);
     int skipped = 0;
     for (const auto& d : plan.decisions) skipped += !d.ran;
-    EXPECT_EQ(skipped, 4);  // bark, tint, atmosphere, aovs
+    EXPECT_EQ(skipped, 6);  // bark, tint, atmosphere, aovs, shadows, underpaint
     // With no tint and no atmosphere the picture changes (they did something before).
     SceneDesc full = parse_scene(scene_text(kCamera, kTrees), "test");
     EXPECT_NE(frame_srgb8(paint(full)), frame_srgb8(paint(s)));

@@ -68,7 +68,21 @@ TEST(RenderCli, BadScenesAreOneLineExitTwoAndNoImage) {
     struct Case {
         std::string json, expected;
     } cases[] = {
-        {R"({"camera": {"fov": 0}})", ": /camera: fov must be in (0, 180) degrees\n"},
+        {R"({"camera": {"fov": 0}})", ": /camera/fov: must be in [0.001, 179], got 0\n"},
+        {R"({"materials": {"grass": {"shader": "grass"}}, "terrain": {"max": [-200, 5]}})",
+         ": /terrain/max: must be greater than /terrain/min in x and z\n"},
+        {R"({"terrain": {"material": "grss"}})",
+         ": /terrain/material: no material \"grss\" in /materials (have: none)\n"},
+        {R"({"materials": {"g": {"shader": "corot-leaves"}}})",
+         ": /materials/g/shader: shader \"corot-leaves\" has no \"surface\" section"},
+        {R"({"render": {"shadows": "soft"}})",
+         ": /render/shadows: expected \"transmissive\" or \"threshold\", got \"soft\"\n"},
+        {R"({"materials": {"grass": {"shader": "grass"}}, "terrain": {},
+             "rocks": [{"radius": -1, "material": "grass"}]})",
+         ": /rocks/0/radius: must be in [0, 1e+06], got -1\n"},
+        {R"({"materials": {"grass": {"shader": "grass"}}, "terrain": {},
+             "groups": [{"families": {"elm": 1}}]})",
+         ": /groups/0/families/elm: no family \"elm\" in /families\n"},
         {R"({"camra": {}})", ": /camra: unknown key (did you mean \"camera\"?)\n"},
         {R"({"families": {"a": {"preset": "oka"}}})",
          ": /families/a/preset: no tree preset \"oka\""},

@@ -1,0 +1,100 @@
+// Terrain, water and rocks to surfaces and strokes, with the materials chosen per particle.
+#include "pipeline/landscape.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "generators/rock.h"
+
+namespace pleinair {
+
+namespace {
+
+constexpr uint64_t kTerrainKey = 1, kWaterKey = 2, kRockKey = 100;
+
+// The scene's stroke parameters with the material's detail threshold and the density applied.
+SurfaceStrokeParams strokes_for(const SurfaceStrokeParams& in, const Material& m, uint32_t index,
+                                float density, float& size) {
+    SurfaceStrokeParams p = in;
+    p.material = index;
+    p.detail_threshold = m.surface.detail_threshold;
+    const int n = std::max(1, static_cast<int>(std::lround(p.particles_per_cluster * density)));
+    // Fewer or more sprites cover the same area: each grows or shrinks by the square root.
+    size = std::sqrt(static_cast<float>(p.particles_per_cluster) / static_cast<float>(n));
+    p.particles_per_cluster = n;
+    return p;
+}
+
+}  // namespace
+
+uint32_t terrain_material_at(const SceneDesc& s, const glm::dvec3& world) {
+    const TerrainDesc& t = s.terrain;
+    uint32_t m = t.material;
+    const glm::dvec2 size = t.params.max - t.params.min;
+    const float u = static_cast<float>((world.x - t.params.min.x) / size.x);
+    const float v = static_cast<float>((world.z - t.params.min.y) / size.y);
+    const float offset = static_cast<float>(t.seed % 997) * 0.37f;
+    if (t.second_material >= 0 &&
+        noise_material(u, v, t.material_noise_frequency, t.material_threshold, offset))
+        m = static_cast<uint32_t>(t.second_material);
+    if (t.bank_material >= 0 && s.water.present && world.y < s.water.level + t.bank_height)
+        m = static_cast<uint32_t>(t.bank_material);
+    return m;
+}
+
+BuiltLandscape build_landscape(const SceneDesc& s) {
+    BuiltLandscape out;
+    const float density = s.render.surface_density;
+    auto pad_sizes = [&](float size) { out.size.resize(out.strokes.size(), size); };
+    if (!s.terrain.present) return out;
+    const TerrainDesc& t = s.terrain;
+    out.has_terrain = true;
+    GridSurface grid = generate_terrain(t.params, t.seed);
+    out.terrain_mesh = grid_mesh(grid);
+
+    float size = 1;
+    SurfaceStrokeParams tp = strokes_for(t.strokes, s.materials[t.material], t.material, density,
+                                         size);
+    const double level = s.water.present ? s.water.level : -1e300;
+    emit_surface_strokes(grid, tp, t.seed, kTerrainKey, out.strokes,
+                         [&](SurfaceParticles& p, size_t i) {
+                             const glm::vec3& ground = p.position[i];
+                             if (s.water.present && ground.y < level - 0.02) return false;
+                             p.material[i] = terrain_material_at(s, glm::dvec3(ground));
+                             return true;
+                         });
+    pad_sizes(size);
+
+    if (s.water.present) {
+        out.has_water = true;
+        const WaterDesc& w = s.water;
+        GridSurface plane;
+        plane.nu = plane.nv = 2;
+        const float y = static_cast<float>(w.level);
+        const auto& mn = t.params.min;
+        const auto& mx = t.params.max;
+        plane.positions = {glm::vec3(mn.x, y, mn.y), glm::vec3(mx.x, y, mn.y),
+                           glm::vec3(mn.x, y, mx.y), glm::vec3(mx.x, y, mx.y)};
+        out.water_mesh = grid_mesh(plane);
+        SurfaceStrokeParams wp =
+            strokes_for(w.strokes, s.materials[w.material], w.material, density, size);
+        emit_surface_strokes(plane, wp, t.seed, kWaterKey, out.strokes,
+                             [&](SurfaceParticles& p, size_t i) {
+                                 const glm::vec3& q = p.position[i];
+                                 return terrain_height(t.params, t.seed, q.x, q.z) < level + 0.05;
+                             });
+        pad_sizes(size);
+    }
+
+    for (size_t i = 0; i < s.rocks.size(); ++i) {
+        const RockDesc& r = s.rocks[i];
+        out.rocks.push_back(generate_rock(r.params, r.seed, r.position));
+        SurfaceStrokeParams rp =
+            strokes_for(r.strokes, s.materials[r.material], r.material, density, size);
+        emit_mesh_strokes(out.rocks.back(), rp, r.seed, kRockKey + i, out.strokes);
+        pad_sizes(size);
+    }
+    return out;
+}
+
+}  // namespace pleinair

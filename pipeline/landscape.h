@@ -1,0 +1,32 @@
+// The landscape of a scene built once: terrain, water and rock surfaces in world space, and the
+// stroke particles the generalized stroke builder emits over them (IV.7).
+#pragma once
+
+#include <vector>
+
+#include "generators/quad_mesh.h"
+#include "generators/surface_strokes.h"
+#include "generators/terrain.h"
+#include "pipeline/scene.h"
+
+namespace pleinair {
+
+struct BuiltLandscape {
+    bool has_terrain = false, has_water = false;
+    QuadMesh terrain_mesh;      // world
+    QuadMesh water_mesh;        // world, flat at the water level
+    std::vector<QuadMesh> rocks;  // world
+    SurfaceParticles strokes;   // material: index into SceneDesc::materials
+    std::vector<float> size;    // per stroke: the sprite's relative size after density
+};
+
+// Pure in the scene: terrain strokes take their material from noise and the bank mask and are
+// dropped under water; water strokes only where the ground lies below the level.
+// render.surface_density scales the particles per cluster.
+BuiltLandscape build_landscape(const SceneDesc& scene);
+
+// The terrain's material at a world point: the noise picks the second material, the bank mask
+// the bank's. Strokes and the underpainting agree through it.
+uint32_t terrain_material_at(const SceneDesc& scene, const glm::dvec3& world);
+
+}  // namespace pleinair
