@@ -372,6 +372,7 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
             view_rays->add_mesh(placed_mesh(i), placements[i].position),
                 view_material.push_back(static_cast<int64_t>(2 * trees[i].family + 1));
         view_rays->commit();
+        rep.view_scene = true;
     }
     if (plan.shadows) {
         sun_rays = std::make_unique<RayScene>(anchor);
@@ -413,6 +414,7 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                 sun_rays->add_casters(std::move(casters[f]), scene.families[f].leaf_shader,
                                       materials[2 * f].edge);
         sun_rays->commit();
+        rep.sun_scene = true;
     }
     if (plan.underpaint || plan.shadows)
         rep.passes.push_back({"ray scenes", true, "Embree scenes the plan asks for", ms_since(t0),

@@ -48,6 +48,7 @@ struct FrameReport {
     std::vector<PassReport> passes;
     uint64_t leaf_sprites = 0, bark_sprites = 0, surface_sprites = 0, culled = 0;
     uint64_t shadow_rays = 0, underpaint_rays = 0;
+    bool view_scene = false, sun_scene = false;  // which Embree scenes were built
     uint64_t fragments = 0;  // pixel samples evaluated by the stroke shader
 };
 

@@ -84,5 +84,78 @@ TEST(Rays, EpsilonScalesWithMagnitude) {
     EXPECT_GT(ray_epsilon({1e5, 0, 0}), 1e5f * std::numeric_limits<float>::epsilon());
 }
 
+// One leaf card 5 above the floor, facing a sun straight up. Its shadow is its stroke mask:
+// the light getting through at each point below is 1 - the mask's opacity there, so the
+// corners of the card's square and the gaps between noise blobs cast no shadow.
+StrokeCaster card(glm::dvec3 center, float label, const StrokeShaderParams& p) {
+    StrokeCaster c;
+    c.center = center;
+    c.axis_s = {1, 0, 0};
+    c.axis_t = {0, 0, 1};
+    c.half_w = c.half_l = 1.0f;
+    c.k = stroke_constants(p, 1.0f, 0.5f, 0.5f, label, 0, 1.0f, 0.0f, 0.0f, false, false);
+    return c;
+}
+
+TEST(Rays, StrokeCastersShadowAsTheirMaskNotAsSquares) {
+    StrokeShaderParams p;
+    EdgeTable edge = make_edge_table(p.stroke_fullness);
+    StrokeCaster c = card({0, 5, 0}, 0.37f, p);
+    RayScene rays;
+    rays.add_mesh(floor_quad(10));
+    rays.add_casters({c}, p, edge);
+    rays.commit();
+    EXPECT_EQ(rays.caster_count(), 1u);
+    const glm::vec3 up(0, 1, 0);
+    int lit_inside = 0, dark = 0, n = 0;
+    for (int j = 0; j < 40; ++j)
+        for (int i = 0; i < 40; ++i) {
+            const float s = (i + 0.5f) / 40, t = (j + 0.5f) / 40;
+            const glm::dvec3 p0(2.0 * s - 1.0, 0.0, 2.0 * t - 1.0);
+            const float want =
+                1.0f - stroke_opacity(p, stroke_noise(c.k, s, t, 1), edge_mask(edge, s, t, p.stroke_fullness));
+            const float got = rays.transmittance(p0, up, ShadowMode::kTransmissive,
+                                                 std::numeric_limits<float>::infinity(), &up);
+            EXPECT_NEAR(got, want, 2e-3f) << s << ", " << t;
+            const float thr = rays.transmittance(p0, up, ShadowMode::kThreshold,
+                                                 std::numeric_limits<float>::infinity(), &up);
+            EXPECT_EQ(thr, want < 0.5f ? 0.0f : 1.0f) << s << ", " << t;
+            lit_inside += got == 1.0f;
+            dark += got < 0.5f;
+            ++n;
+        }
+    EXPECT_GT(lit_inside, n / 10) << "a square would shade every point under it";
+    EXPECT_GT(dark, n / 10);
+    // Beside the card, full light; the floor itself is not a caster of the points on it.
+    EXPECT_EQ(rays.transmittance({3, 0, 3}, up, ShadowMode::kTransmissive), 1.0f);
+}
+
+TEST(Rays, LightThroughStackedCardsIsTheProductAndOpaqueSurfacesBlock) {
+    StrokeShaderParams p;
+    p.max_stroke_opacity = 0.6f;  // every card lets some light through
+    EdgeTable edge = make_edge_table(p.stroke_fullness);
+    StrokeCaster a = card({0, 5, 0}, 0.2f, p), b = card({0, 7, 0}, 0.8f, p);
+    RayScene rays;
+    rays.add_casters({a, b}, p, edge);
+    QuadMesh roof = floor_quad(1);
+    rays.add_mesh(roof, {5, 9, 0});  // an opaque roof over x in [4, 6]
+    rays.commit();
+    const glm::vec3 up(0, 1, 0);
+    for (float s : {0.3f, 0.5f, 0.62f}) {
+        const float t = 0.45f;
+        auto op = [&](const StrokeCaster& c) {
+            return stroke_opacity(p, stroke_noise(c.k, s, t, 1),
+                                  edge_mask(edge, s, t, p.stroke_fullness));
+        };
+        const float want = (1 - op(a)) * (1 - op(b));
+        EXPECT_NEAR(rays.transmittance({2.0 * s - 1.0, 0, 2.0 * t - 1.0}, up,
+                                       ShadowMode::kTransmissive),
+                    want, 2e-3f);
+    }
+    EXPECT_EQ(rays.transmittance({5, 0, 0}, up, ShadowMode::kTransmissive), 0.0f);
+    EXPECT_TRUE(rays.occluded({5, 0, 0}, up));
+    EXPECT_FALSE(rays.intersect({0, 0, 0}, up).hit) << "cards are invisible to camera rays";
+}
+
 }  // namespace
 }  // namespace pleinair
