@@ -28,9 +28,10 @@ build: deps
 	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release
 	cmake --build $(BUILD) -j $(JOBS)
 
-# Paints the default scene into out/grove.png and prints the frame's plan.
+# Paints the default scene (a full landscape at 1920x1080) into out/mortefontaine.png and prints
+# the frame's plan.
 render: build
-	$(BUILD)/pleinair render grove -o out/grove.png --explain
+	$(BUILD)/pleinair render mortefontaine -o out/mortefontaine.png --explain
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)

@@ -29,13 +29,27 @@ RingRange eligible_rings(const Limb& L, const LeafParams& lp, int lowest_trunk, 
     return {std::max(1, from_center), top - from_tip};
 }
 
-// A stride coprime with n near n / golden ratio: (i * stride) mod n is a permutation that puts
-// neighbouring particles far apart in label space, so adjacent strokes get unrelated noise.
-uint64_t label_stride(uint64_t n) {
-    if (n <= 2) return 1;
-    uint64_t s = static_cast<uint64_t>(static_cast<double>(n) * 0.6180339887498949);
-    while (std::gcd(s, n) != 1) ++s;
-    return s;
+// Labels in (0, 1) from 23 bits of each key's hash (odd multiples of 2^-24, exact in float).
+// Two keys meeting on the same label (about one tree in two has such a pair among 3,000
+// leaves) are parted by the next float up, in key order, so labels stay unique and the others
+// do not move.
+std::vector<float> unique_labels(const std::vector<uint64_t>& keys) {
+    const size_t n = keys.size();
+    std::vector<float> out(n);
+    for (size_t i = 0; i < n; ++i)
+        out[i] = static_cast<float>((static_cast<double>(keys[i] >> 41) + 0.5) / 8388608.0);
+    std::vector<uint32_t> order(n);
+    for (size_t i = 0; i < n; ++i) order[i] = static_cast<uint32_t>(i);
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+        return out[a] != out[b] ? out[a] < out[b] : keys[a] < keys[b];
+    });
+    for (size_t j = 1; j < n; ++j) {
+        float& cur = out[order[j]];
+        const float prev = out[order[j - 1]];
+        if (cur <= prev) cur = std::nextafter(prev, 1.0f);
+        if (!(cur < 1.0f)) cur = std::nextafter(1.0f, 0.0f);  // 2^-25 from 1: never reached
+    }
+    return out;
 }
 
 }  // namespace
@@ -77,6 +91,10 @@ LeafParticles emit_leaves(const TreeMesh& tm, const TreeParams& params, uint64_t
     g_start.reserve(most);
     g_len.reserve(most);
 
+    // Each leaf's label comes from its own key (the emitter's and the step's), not from its
+    // place in the list, so adding a branch relabels no other leaf.
+    std::vector<uint64_t> label_key;
+    label_key.reserve(most);
     for (const Emitter& e : emitters) {
         const Limb& L = *e.limb;
         Rng rng = make_rng(seed, Purpose::kLeafGrow, e.key);
@@ -110,6 +128,8 @@ LeafParticles emit_leaves(const TreeMesh& tm, const TreeParams& params, uint64_t
             p = next;
             dist += step;
             pos.push_back(p);
+            label_key.push_back(hash_keys(seed, static_cast<uint64_t>(Purpose::kLeafLabel), e.key,
+                                          static_cast<uint64_t>(k)));
             along.push_back(dist);
             out.normal.push_back(glm::vec3(dir));
             g_start.push_back(gs);
@@ -133,7 +153,7 @@ LeafParticles emit_leaves(const TreeMesh& tm, const TreeParams& params, uint64_t
         max_center = std::max(max_center, from_center[i]);
     }
     const FadeParams& fp = lp.fade;
-    const uint64_t stride = label_stride(n);
+    const std::vector<float> labels = unique_labels(label_key);
     out.position.resize(n);
     out.branch_distance.resize(n);
     out.center_distance.resize(n);
@@ -146,8 +166,7 @@ LeafParticles emit_leaves(const TreeMesh& tm, const TreeParams& params, uint64_t
         out.branch_distance[i] = max_along > 0 ? static_cast<float>(along[i] / max_along) : 0.0f;
         out.center_distance[i] =
             max_center > 0 ? static_cast<float>(std::min(1.0, from_center[i] / max_center)) : 0.0f;
-        out.label[i] = static_cast<float>((static_cast<double>((i * stride) % n) + 0.5) /
-                                          static_cast<double>(n));
+        out.label[i] = labels[i];
         // Outer leaves (centre distance 1) start fading at the near circle, inner ones last.
         double start = bias(1.0f - out.center_distance[i], static_cast<float>(fp.threshold_bias));
         start = std::clamp(start + fp.threshold_var * g_start[i], 0.0, 1.0);

@@ -37,6 +37,7 @@ enum class Purpose : uint64_t {
     kTerrain = 10,  // terrain noise offsets
     kSurface = 11,  // surface stroke particles, per (surface, span u, span v)
     kScatter = 12,  // tree placement, per group
+    kLeafLabel = 13,  // a leaf's label, per (emitter, step)
 };
 
 // PCG32 (O'Neill 2014): small state, good statistics, and fully specified, so every platform

@@ -224,6 +224,55 @@ Color background_color(const SceneDesc& s, const Color lin[4], double x, double 
 
 }  // namespace
 
+TreePlacement placement(const BuiltTree& b) {
+    return {std::cos(b.rotation * M_PI / 180.0), std::sin(b.rotation * M_PI / 180.0), b.scale,
+            b.position};
+}
+
+glm::dvec3 TreePlacement::place(const glm::vec3& p) const {
+    return position + rotate_y(glm::dvec3(p) * scale, c, s);
+}
+
+glm::vec3 TreePlacement::turn(const glm::vec3& v) const {
+    return glm::vec3(rotate_y(glm::dvec3(v), c, s));
+}
+
+QuadMesh placed_limbs(const BuiltTree& b) {
+    const TreePlacement pl = placement(b);
+    QuadMesh m = b.tree.render;
+    for (auto& p : m.positions) p = glm::vec3(pl.place(p) - pl.position);
+    return m;
+}
+
+std::vector<StrokeCaster> leaf_casters(const SceneDesc& scene, const BuiltTree& b,
+                                       const glm::vec3& sun) {
+    const TreePlacement pl = placement(b);
+    const StrokeShaderParams& p = scene.families[b.family].leaf_shader;
+    const LeafParticles& L = b.tree.leaves;
+    const double w = p.sprite_size * scene.families[b.family].params.unit * b.scale;
+    // A frame perpendicular to the sun; each card turned by its stroke's angle jitter.
+    const glm::vec3 ref = std::abs(sun.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+    const glm::vec3 a0 = glm::normalize(glm::cross(ref, sun)), b0 = glm::cross(sun, a0);
+    std::vector<StrokeCaster> out;
+    out.reserve(L.size());
+    for (size_t j = 0; j < L.size(); ++j) {
+        StrokeCaster c;
+        c.center = pl.place(L.position[j]);
+        const float jitter = 1.0f + p.size_jitter * (2.0f * label_hash(L.label[j], 1) - 1.0f);
+        const double ang = (label_hash(L.label[j], 2) - 0.5) * p.angle_jitter * M_PI / 180;
+        const float ca = static_cast<float>(std::cos(ang)), sa = static_cast<float>(std::sin(ang));
+        c.axis_s = ca * a0 + sa * b0;
+        c.axis_t = -sa * a0 + ca * b0;
+        c.half_w = static_cast<float>(0.5 * w * jitter);
+        c.half_l = c.half_w * p.stroke_aspect;
+        c.k = stroke_constants(p, glm::dot(pl.turn(L.normal[j]), sun), L.center_distance[j],
+                               L.branch_distance[j], L.label[j], L.tree_id[j], 1.0f, 0.0f, 0.0f,
+                               false, false);
+        out.push_back(c);
+    }
+    return out;
+}
+
 std::vector<BuiltTree> build_trees(const SceneDesc& scene, bool bark) {
     std::vector<BuiltTree> out(scene.trees.size());
     tbb::parallel_for(size_t{0}, scene.trees.size(), [&](size_t i) {
@@ -326,29 +375,10 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
         m.edge = make_edge_table(m.shader->stroke_fullness);
     }
 
-    // Trees in world space: rotation about +y and scale, then the position (in double).
-    struct Placement {
-        double c, s, scale;
-        glm::dvec3 position;
-        glm::dvec3 place(const glm::vec3& p) const {
-            return position + rotate_y(glm::dvec3(p) * scale, c, s);
-        }
-        glm::vec3 turn(const glm::vec3& v) const { return glm::vec3(rotate_y(glm::dvec3(v), c, s)); }
-    };
-    std::vector<Placement> placements(trees.size());
-    for (size_t i = 0; i < trees.size(); ++i) {
-        const BuiltTree& b = trees[i];
-        placements[i] = {std::cos(b.rotation * M_PI / 180.0), std::sin(b.rotation * M_PI / 180.0),
-                         b.scale, b.position};
-    }
-    // A limb mesh placed relative to the tree's position (added back in double by Embree's
-    // anchor offset).
-    auto placed_mesh = [&](size_t i) {
-        QuadMesh m = trees[i].tree.render;
-        for (auto& p : m.positions)
-            p = glm::vec3(placements[i].place(p) - placements[i].position);
-        return m;
-    };
+    std::vector<TreePlacement> placements;
+    placements.reserve(trees.size());
+    for (const BuiltTree& b : trees) placements.push_back(placement(b));
+    auto placed_mesh = [&](size_t i) { return placed_limbs(trees[i]); };
 
     // Ray scenes, only as the plan asks: the camera's (underpainting and culling of sprites
     // behind the ground) and the sun's (shadows cast as brush strokes).
@@ -383,31 +413,10 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
         for (size_t i = 0; i < trees.size(); ++i)
             sun_rays->add_mesh(placed_mesh(i), placements[i].position);
         // Leaf strokes as cards facing the sun, one caster set per family's leaf shader.
-        glm::vec3 ref = std::abs(sun.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-        glm::vec3 a0 = glm::normalize(glm::cross(ref, sun)), b0 = glm::cross(sun, a0);
         std::vector<std::vector<StrokeCaster>> casters(nf);
-        for (size_t i = 0; i < trees.size(); ++i) {
-            const BuiltTree& b = trees[i];
-            const StrokeShaderParams& p = scene.families[b.family].leaf_shader;
-            const LeafParticles& L = b.tree.leaves;
-            const double w = p.sprite_size * scene.families[b.family].params.unit * b.scale;
-            for (size_t j = 0; j < L.size(); ++j) {
-                StrokeCaster c;
-                c.center = placements[i].place(L.position[j]);
-                const float jitter =
-                    1.0f + p.size_jitter * (2.0f * label_hash(L.label[j], 1) - 1.0f);
-                const double ang = (label_hash(L.label[j], 2) - 0.5) * p.angle_jitter * M_PI / 180;
-                const float ca = static_cast<float>(std::cos(ang)),
-                            sa = static_cast<float>(std::sin(ang));
-                c.axis_s = ca * a0 + sa * b0;
-                c.axis_t = -sa * a0 + ca * b0;
-                c.half_w = static_cast<float>(0.5 * w * jitter);
-                c.half_l = c.half_w * p.stroke_aspect;
-                c.k = stroke_constants(p, glm::dot(placements[i].turn(L.normal[j]), sun),
-                                       L.center_distance[j], L.branch_distance[j], L.label[j],
-                                       L.tree_id[j], 1.0f, 0.0f, 0.0f, false, false);
-                casters[b.family].push_back(c);
-            }
+        for (const BuiltTree& b : trees) {
+            std::vector<StrokeCaster> c = leaf_casters(scene, b, sun);
+            casters[b.family].insert(casters[b.family].end(), c.begin(), c.end());
         }
         for (size_t f = 0; f < nf; ++f)
             if (!casters[f].empty())
@@ -511,7 +520,7 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
         }
         const BuiltTree& b = trees[i];
         const Family& fam = scene.families[b.family];
-        const Placement& pl = placements[i];
+        const TreePlacement& pl = placements[i];
         const LeafParticles& L = b.tree.leaves;
         out.reserve(L.size() + (plan.bark ? b.bark.size() : 0));
         const uint32_t leaf_mat = static_cast<uint32_t>(2 * b.family), bark_mat = leaf_mat + 1;
@@ -592,20 +601,6 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
         return a < b;
     });
     rep.passes.push_back({"sort", true, "back-to-front compositing", ms_since(t0), ""});
-
-    // Per-sprite colour ramps (palette, tint and atmosphere folded in), when the settings
-    // allow the table instead of the exact lookup per fragment.
-    std::vector<StrokeRamp> ramps;
-    if (rs.palette_lut) {
-        t0 = Clock::now();
-        ramps.resize(sprites.size());
-        tbb::parallel_for(size_t{0}, sprites.size(), [&](size_t i) {
-            ramps[i] = make_ramp(sprites[i].k, *materials[sprites[i].material].palette);
-        });
-        rep.passes.push_back({"colour ramps", true,
-                              "render/palette_lut: colours tabulated per sprite", ms_since(t0),
-                              ""});
-    }
 
     // Bins: each tile lists the sprites touching it, in depth order.
     t0 = Clock::now();
@@ -793,7 +788,15 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
             const Sprite& sp = sprites[idx];
             const SpriteMaterial& m = materials[sp.material];
             const StrokeShaderParams& p = *m.shader;
-            const StrokeRamp* ramp = ramps.empty() ? nullptr : &ramps[idx];
+            // The sprite's colour ramp (palette, tint and atmosphere folded in), when the
+            // settings allow the table: built here, per tile the sprite touches, so no frame-
+            // sized array of ramps is ever held (33 colours a sprite would outweigh the sprite).
+            StrokeRamp local_ramp;
+            const StrokeRamp* ramp = nullptr;
+            if (rs.palette_lut && !plan.bare_blend) {
+                local_ramp = make_ramp(sp.k, *m.palette);
+                ramp = &local_ramp;
+            }
             const bool edge_lut = rs.edge_lut;
             float ex, ey;
             extent(sp, ex, ey);

@@ -9,6 +9,7 @@
 #include "generators/bark.h"
 #include "generators/tree.h"
 #include "pipeline/landscape.h"
+#include "pipeline/rays.h"
 #include "pipeline/scene.h"
 
 namespace pleinair {
@@ -21,6 +22,23 @@ struct BuiltTree {
     double rotation = 0;  // about +y, degrees
     double scale = 1;
 };
+
+// A tree's placement in the world: rotation about +y and scale, then its position (in double).
+struct TreePlacement {
+    double c = 1, s = 0, scale = 1;
+    glm::dvec3 position{0.0};
+    glm::dvec3 place(const glm::vec3& tree_local) const;
+    glm::vec3 turn(const glm::vec3& direction) const;
+};
+TreePlacement placement(const BuiltTree& tree);
+
+// The render mesh (trunk and limbs) rotated and scaled, relative to the tree's position.
+QuadMesh placed_limbs(const BuiltTree& tree);
+
+// The tree's leaf strokes as shadow casters: cards facing the sun, sized and turned like the
+// strokes, with the same noise (IV.4.2).
+std::vector<StrokeCaster> leaf_casters(const SceneDesc& scene, const BuiltTree& tree,
+                                       const glm::vec3& sun);
 
 // Generates every tree of the scene (in parallel; the result does not depend on threads).
 // `bark` is false when the frame does not paint bark.

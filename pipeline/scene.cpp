@@ -483,8 +483,12 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
                     if (pal.empty())
                         throw InputError(source, ptr + "/" + pkey,
                                          "the shader names no palette; give one here");
-                    palette = shader_palette(
-                        load_palette(near_scene(pal, source), source, ptr + "/" + pkey), params);
+                    // A bad palette file is the palette key's problem, not the shader's.
+                    load_into(problems, source, ptr + "/" + pkey, [&] {
+                        palette = shader_palette(
+                            load_palette(near_scene(pal, source), source, ptr + "/" + pkey),
+                            params);
+                    });
                 });
             };
             shader(leaf_shader, leaf_palette, "leaf_shader", "leaf_palette", family.leaf_shader,

@@ -20,13 +20,14 @@ struct Timed {
     double ms = 0;  // median over the repeats, of the whole paint (sprites to composite)
 };
 
-Timed timed_paint(const SceneDesc& scene, const std::vector<BuiltTree>& trees, int repeat) {
+Timed timed_paint(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
+                  const BuiltLandscape& land, int repeat) {
     FramePlan plan = plan_frame(scene, {});
     std::vector<double> ms;
     Timed out;
     for (int i = 0; i < repeat; ++i) {
         auto t0 = std::chrono::steady_clock::now();
-        out.frame = paint_frame(scene, trees, plan);
+        out.frame = paint_frame(scene, trees, land, plan);
         ms.push_back(
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                 .count());
@@ -41,43 +42,73 @@ Timed timed_paint(const SceneDesc& scene, const std::vector<BuiltTree>& trees, i
 int run_bench_accuracy(const BenchCommand& cmd) {
     SceneDesc scene = load_scene(resolve_preset("scenes", cmd.scene, "SCENE"), cmd.set);
     std::vector<BuiltTree> trees = build_trees(scene, scene.render.bark_coverage > 0);
+    const bool landscape = scene.terrain.present || !scene.rocks.empty();
 
-    // The reference: every setting at its most accurate.
+    // The reference: every setting at its most accurate (for a landscape: shadows through
+    // every stroke, the underpainting at full resolution, surface strokes at 4 times the
+    // scene's density).
     SceneDesc ref = scene;
     ref.render.samples = 16;
     ref.render.octaves = 8;
     ref.render.palette_lut = false;
     ref.render.edge_lut = false;
     ref.render.filter_strokes = false;
-    Timed reference = timed_paint(ref, trees, 1);
+    ref.render.shadows = "transmissive";
+    ref.render.underpaint_scale = 1.0f;
+    ref.render.surface_density = 4.0f;
+    const BuiltLandscape ref_land = build_landscape(ref);
+    Timed reference = timed_paint(ref, trees, ref_land, 1);
 
     struct Row {
         std::string group, setting;
-        std::function<void(RenderSettings&)> set;
+        std::function<void(SceneDesc&)> set;
     };
     std::vector<Row> rows = {
-        {"antialiasing", "1 sample per pixel", [](RenderSettings& r) { r.samples = 1; }},
-        {"antialiasing", "4 samples per pixel", [](RenderSettings& r) { r.samples = 4; }},
-        {"antialiasing", "16 samples per pixel", [](RenderSettings& r) { r.samples = 16; }},
+        {"antialiasing", "1 sample per pixel", [](SceneDesc& s) { s.render.samples = 1; }},
+        {"antialiasing", "4 samples per pixel", [](SceneDesc& s) { s.render.samples = 4; }},
+        {"antialiasing", "16 samples per pixel", [](SceneDesc& s) { s.render.samples = 16; }},
         {"antialiasing", "1 sample, filtered feather",
-         [](RenderSettings& r) { r.samples = 1, r.filter_strokes = true; }},
-        {"noise octaves", "1 octave", [](RenderSettings& r) { r.octaves = 1; }},
-        {"noise octaves", "2 octaves", [](RenderSettings& r) { r.octaves = 2; }},
-        {"noise octaves", "4 octaves", [](RenderSettings& r) { r.octaves = 4; }},
-        {"palette", "exact per fragment", [](RenderSettings& r) { r.palette_lut = false; }},
-        {"palette", "table per sprite", [](RenderSettings& r) { r.palette_lut = true; }},
-        {"edge mask", "exact (sin, pow)", [](RenderSettings& r) { r.edge_lut = false; }},
-        {"edge mask", "table", [](RenderSettings& r) { r.edge_lut = true; }},
+         [](SceneDesc& s) { s.render.samples = 1, s.render.filter_strokes = true; }},
+        {"noise octaves", "1 octave", [](SceneDesc& s) { s.render.octaves = 1; }},
+        {"noise octaves", "2 octaves", [](SceneDesc& s) { s.render.octaves = 2; }},
+        {"noise octaves", "4 octaves", [](SceneDesc& s) { s.render.octaves = 4; }},
+        {"palette", "exact per fragment", [](SceneDesc& s) { s.render.palette_lut = false; }},
+        {"palette", "table per sprite", [](SceneDesc& s) { s.render.palette_lut = true; }},
+        {"edge mask", "exact (sin, pow)", [](SceneDesc& s) { s.render.edge_lut = false; }},
+        {"edge mask", "table", [](SceneDesc& s) { s.render.edge_lut = true; }},
     };
+    if (scene.sun_casts_shadows) {
+        rows.push_back({"shadows", "none", [](SceneDesc& s) { s.sun_casts_shadows = false; }});
+        rows.push_back({"shadows", "per particle, threshold at 1/2",
+                        [](SceneDesc& s) { s.render.shadows = "threshold"; }});
+        rows.push_back({"shadows", "per particle, transmissive",
+                        [](SceneDesc& s) { s.render.shadows = "transmissive"; }});
+    }
+    if (landscape) {
+        for (float u : {1.0f, 0.5f, 0.25f})
+            rows.push_back({"underpainting", "at " + std::to_string(int(u * 100)) + "% resolution",
+                            [u](SceneDesc& s) { s.render.underpaint_scale = u; }});
+        for (float d : {0.25f, 0.5f, 1.0f, 2.0f, 4.0f}) {
+            char label[48];
+            std::snprintf(label, sizeof label, "%.2gx the scene's", d);
+            rows.push_back({"surface density", label,
+                            [d](SceneDesc& s) { s.render.surface_density = d; }});
+        }
+    }
     std::printf(
         "Reference: %s at %dx%d, 16 samples per pixel, 8 octaves, exact palette and edge "
-        "mask: %.0f ms.\nEach row changes one setting of the reference.\n\n",
-        cmd.scene.c_str(), scene.camera.width, scene.camera.height, reference.ms);
+        "mask%s: %.0f ms.\nEach row changes one setting of the reference.\n\n",
+        cmd.scene.c_str(), scene.camera.width, scene.camera.height,
+        landscape ? ", transmissive shadows, full-resolution underpainting, 4x surface density"
+                  : "",
+        reference.ms);
     std::printf("| setting | value | time (ms) | RMSE | PSNR (dB) |\n|---|---|---:|---:|---:|\n");
     for (const Row& row : rows) {
         SceneDesc s = ref;
-        row.set(s.render);
-        Timed t = timed_paint(s, trees, cmd.repeat);
+        row.set(s);
+        const bool rebuild = s.render.surface_density != ref.render.surface_density;
+        const BuiltLandscape land = rebuild ? build_landscape(s) : BuiltLandscape{};
+        Timed t = timed_paint(s, trees, rebuild ? land : ref_land, cmd.repeat);
         ImageError e = compare_frames(t.frame, reference.frame);
         char psnr[32];
         if (std::isfinite(e.psnr))
@@ -88,7 +119,7 @@ int run_bench_accuracy(const BenchCommand& cmd) {
                     t.ms, e.rmse, psnr);
     }
     SceneDesc def = scene;
-    Timed t = timed_paint(def, trees, cmd.repeat);
+    Timed t = timed_paint(def, trees, build_landscape(def), cmd.repeat);
     ImageError e = compare_frames(t.frame, reference.frame);
     std::printf(
         "| scene's settings | %d spp, %d octave(s), palette %s, edge %s | %.0f | %.5f | %.1f |\n",

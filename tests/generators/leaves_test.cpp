@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <map>
 #include <set>
+#include <tuple>
 
 #include "generators/tree.h"
 #include "generators/tree_mesh.h"
@@ -53,6 +55,30 @@ TEST(Leaves, NeighbouringParticlesGetDistantLabels) {
         mean_gap += std::abs(t.leaves.label[i] - t.leaves.label[i - 1]);
     mean_gap /= double(t.leaves.size() - 1);
     EXPECT_GT(mean_gap, 0.2);  // consecutive indices would give 1/N
+}
+
+// A leaf's label is its own (DESIGN.md: adding a branch never changes the others): the leaves
+// both trees share keep their labels when more branches grow.
+TEST(Leaves, AddingBranchesKeepsTheOtherLeavesLabels) {
+    TreeParams p = test::preset("oak");
+    Tree before = generate_tree(p, 21);
+    p.branches.probability.base = 0.6;
+    Tree after = generate_tree(p, 21);
+    ASSERT_GT(after.leaves.size(), before.leaves.size());
+    std::map<std::tuple<float, float, float>, float> label_at;
+    for (size_t i = 0; i < after.leaves.size(); ++i) {
+        const glm::vec3& q = after.leaves.position[i];
+        label_at[{q.x, q.y, q.z}] = after.leaves.label[i];
+    }
+    size_t shared = 0;
+    for (size_t i = 0; i < before.leaves.size(); ++i) {
+        const glm::vec3& q = before.leaves.position[i];
+        auto it = label_at.find({q.x, q.y, q.z});
+        if (it == label_at.end()) continue;
+        ++shared;
+        EXPECT_EQ(it->second, before.leaves.label[i]);
+    }
+    EXPECT_GT(shared, before.leaves.size() / 2);
 }
 
 TEST(Leaves, EveryEligibleVertexEmitsAFullImpliedBranchAtProbabilityOne) {

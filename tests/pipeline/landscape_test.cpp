@@ -20,7 +20,8 @@ namespace {
 std::string landscape(const std::string& sun, double o = 0, const std::string& extra = "",
                       const std::string& camera_pos = "") {
     auto x = [&](double v) { return std::to_string(v + o); };
-    std::string cam = camera_pos.empty() ? "[" + x(0) + ", 3, " + x(40) + "]" : camera_pos;
+    std::string cam = camera_pos;
+    if (cam.empty()) cam.append("[").append(x(0)).append(", 3, ").append(x(40)).append("]");
     return R"({"camera": {"position": )" + cam + R"(, "look_at": [)" + x(0) + ", 4, " + x(-10) +
            R"(], "fov": 50, "width": 96, "height": 64},
         "sun": )" + sun + R"(,
@@ -72,10 +73,11 @@ TEST(Landscape, BuildsStrokesOfEveryKind) {
     for (size_t i = 0; i < land.strokes.size(); ++i) {
         const glm::vec3& p = land.strokes.position[i];
         double ground = terrain_height(s.terrain.params, s.terrain.seed, p.x, p.z);
-        if (land.strokes.material[i] == s.water.material)
+        if (land.strokes.material[i] == s.water.material) {
             EXPECT_LT(ground, s.water.level + 0.05 + 1e-4);
-        else if (land.strokes.material[i] != s.rocks[0].material)
+        } else if (land.strokes.material[i] != s.rocks[0].material) {
             EXPECT_GE(p.y, s.water.level - 0.02 - 0.1 - 1e-4);
+        }
     }
     EXPECT_EQ(s.trees.size(), s.explicit_trees + 4);  // the group planted its four
     for (size_t i = s.explicit_trees; i < s.trees.size(); ++i)

@@ -89,6 +89,8 @@ TEST(RenderCli, BadScenesAreOneLineExitTwoAndNoImage) {
         {R"({"families": {"a": {"preset": "oak"}}, "trees": [{"family": "b"}]})",
          ": /trees/0/family: no family \"b\" in /families (have: a)\n"},
         {R"({"render": {"samples": 3}})", ": /render/samples: must be 1, 4 or 16, got 3\n"},
+        {R"({"families": {"a": {"preset": "oak", "leaf_palette": "missing.json"}}})",
+         ": /families/a/leaf_palette: "},
         {R"({"background": {"sky_zenith": [2, 0, 0]}})",
          ": /background/sky_zenith: expected a colour"},
         {"{ \"camera\": ", ": "},

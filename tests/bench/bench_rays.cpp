@@ -1,0 +1,101 @@
+// Embree throughput for shadow rays: against the forest-edge scene's terrain, rocks and trunks
+// plus its leaf strokes as cards whose opacity is the stroke mask (the occlusion filter), and
+// against the same cards as plain opaque quads (no filter), in rays per second on one core,
+// measured in the same run. Figures: BENCHMARKS.md.
+#include <benchmark/benchmark.h>
+#include <tbb/task_arena.h>
+
+#include <glm/geometric.hpp>
+
+#include "generators/rng.h"
+#include "pipeline/paint.h"
+#include "pipeline/presets.h"
+
+using namespace pleinair;
+
+namespace {
+
+struct Fixture {
+    SceneDesc scene;
+    std::vector<BuiltTree> trees;
+    BuiltLandscape land;
+    std::vector<glm::dvec3> origins;  // leaf and surface particles: where shadow rays start
+    std::unique_ptr<RayScene> filtered, opaque;
+    glm::vec3 sun;
+
+    Fixture() {
+        scene = load_scene(resolve_preset("scenes", "forest-edge", "bench"));
+        trees = build_trees(scene, false);
+        land = build_landscape(scene);
+        sun = glm::vec3(scene.sun_direction);
+        const glm::dvec3 anchor = scene.camera.eye;
+        filtered = std::make_unique<RayScene>(anchor);
+        opaque = std::make_unique<RayScene>(anchor);
+        for (RayScene* r : {filtered.get(), opaque.get()}) {
+            r->add_mesh(land.terrain_mesh);
+            for (const auto& rock : land.rocks) r->add_mesh(rock);
+            for (const BuiltTree& b : trees) r->add_mesh(placed_limbs(b), b.position);
+        }
+        std::vector<std::vector<StrokeCaster>> per_family(scene.families.size());
+        QuadMesh cards;
+        for (const BuiltTree& b : trees)
+            for (const StrokeCaster& c : leaf_casters(scene, b, sun)) {
+                per_family[b.family].push_back(c);
+                const glm::vec3 a = c.axis_s * c.half_w, t = c.axis_t * c.half_l;
+                const glm::vec3 o(c.center - anchor);
+                const unsigned k = static_cast<unsigned>(cards.positions.size());
+                cards.positions.insert(cards.positions.end(),
+                                       {o - a - t, o + a - t, o + a + t, o - a + t});
+                cards.quads.push_back({k, k + 1, k + 2, k + 3});
+                origins.push_back(c.center);
+            }
+        static std::vector<EdgeTable> edges;
+        edges.clear();
+        edges.reserve(scene.families.size());
+        for (size_t f = 0; f < scene.families.size(); ++f) {
+            edges.push_back(make_edge_table(scene.families[f].leaf_shader.stroke_fullness));
+            if (!per_family[f].empty())
+                filtered->add_casters(per_family[f], scene.families[f].leaf_shader, edges.back());
+        }
+        opaque->add_mesh(cards, anchor);
+        filtered->commit();
+        opaque->commit();
+        for (size_t i = 0; i < land.strokes.size(); i += 4)
+            origins.push_back(glm::dvec3(land.strokes.position[i]));
+    }
+};
+
+Fixture& fixture() {
+    static Fixture f;
+    return f;
+}
+
+void shadow_rays(benchmark::State& state, bool filter) {
+    Fixture& f = fixture();
+    tbb::task_arena one(1);
+    uint64_t rays = 0, lit = 0;
+    for (auto _ : state) {
+        one.execute([&] {
+            FlushDenormals ftz;
+            for (const glm::dvec3& o : f.origins) {
+                float t = filter ? f.filtered->transmittance(o, f.sun, ShadowMode::kTransmissive)
+                                 : (f.opaque->occluded(o, f.sun) ? 0.0f : 1.0f);
+                lit += t > 0.5f;
+            }
+        });
+        rays += f.origins.size();
+    }
+    state.counters["rays_per_s"] = benchmark::Counter(static_cast<double>(rays),
+                                                      benchmark::Counter::kIsRate);
+    state.counters["lit_fraction"] = static_cast<double>(lit) / static_cast<double>(rays);
+    state.counters["rays"] = static_cast<double>(f.origins.size());
+}
+
+void BM_ShadowRaysStrokeFilter(benchmark::State& state) { shadow_rays(state, true); }
+void BM_ShadowRaysOpaqueCards(benchmark::State& state) { shadow_rays(state, false); }
+
+}  // namespace
+
+BENCHMARK(BM_ShadowRaysStrokeFilter)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ShadowRaysOpaqueCards)->Unit(benchmark::kMillisecond);
+BENCHMARK_MAIN();
