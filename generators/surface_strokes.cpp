@@ -20,8 +20,10 @@ struct Labeller {
         stride = total > 2 ? (total / 2 + 1) | 1u : 1;
         while (total > 1 && std::gcd(stride, total) != 1) stride += 2;
     }
-    float operator()() {
-        return static_cast<float>((((next++ * stride) % total) + 0.5) / static_cast<double>(total));
+    float operator()() { return at(next++); }
+    // The label of the idx-th particle in emission order.
+    float at(size_t idx) const {
+        return static_cast<float>((((idx * stride) % total) + 0.5) / static_cast<double>(total));
     }
 };
 
@@ -63,23 +65,29 @@ void emit_one(Rng& rng, const SurfaceStrokeParams& p, const glm::vec3& pos, cons
 }  // namespace
 
 void emit_surface_strokes(const GridSurface& g, const SurfaceStrokeParams& p, uint64_t seed,
-                          uint64_t surface_key, SurfaceParticles& out, const StrokeKeep& keep) {
+                          uint64_t surface_key, SurfaceParticles& out, const StrokeKeep& keep,
+                          int first_row, int end_row) {
     if (g.nu < 2 || g.nv < 2 || p.particle_spans_u < 1 || p.particle_spans_v < 1 ||
         p.particles_per_cluster < 1)
         return;
-    Labeller label(static_cast<size_t>(p.particle_spans_u) * p.particle_spans_v *
-                   static_cast<size_t>(p.particles_per_cluster));
-    for (int sv = 0; sv < p.particle_spans_v; ++sv)
+    const size_t ppc = static_cast<size_t>(p.particles_per_cluster);
+    const Labeller label(static_cast<size_t>(p.particle_spans_u) * p.particle_spans_v * ppc);
+    first_row = std::max(first_row, 0);
+    end_row = end_row < 0 ? p.particle_spans_v : std::min(end_row, p.particle_spans_v);
+    out.reserve(out.size() + static_cast<size_t>(std::max(end_row - first_row, 0)) *
+                                 static_cast<size_t>(p.particle_spans_u) * ppc);
+    for (int sv = first_row; sv < end_row; ++sv)
         for (int su = 0; su < p.particle_spans_u; ++su) {
             Rng rng = make_rng(seed, Purpose::kSurface, surface_key, su, sv);
-            for (int k = 0; k < p.particles_per_cluster; ++k) {
+            const size_t first = (static_cast<size_t>(sv) * p.particle_spans_u + su) * ppc;
+            for (size_t k = 0; k < ppc; ++k) {
                 double u = (su + rand1(rng)) / p.particle_spans_u;
                 double v = (sv + rand1(rng)) / p.particle_spans_v;
                 glm::vec3 pos, n;
                 eval_grid(g, u, v, pos, n);
                 const size_t before = out.size();
-                emit_one(rng, p, pos, n, {static_cast<float>(u), static_cast<float>(v)}, label(),
-                         out);
+                emit_one(rng, p, pos, n, {static_cast<float>(u), static_cast<float>(v)},
+                         label.at(first + k), out);
                 if (keep && !keep(out, before)) out.truncate(before);
             }
         }

@@ -38,6 +38,17 @@ struct SurfaceParticles {
     std::vector<float> fade_begin;  // distance value where a detail stroke starts to fade
     std::vector<float> fade_end;    // ... and is gone; > 1 for strokes that never fade
     size_t size() const { return position.size(); }
+    void reserve(size_t n) {
+        position.reserve(n), normal.reserve(n), random_normal.reserve(n), uv.reserve(n);
+        height.reserve(n), material.reserve(n), label.reserve(n), fade_begin.reserve(n);
+        fade_end.reserve(n);
+    }
+    void append(const SurfaceParticles& o) {
+        auto cat = [](auto& a, const auto& b) { a.insert(a.end(), b.begin(), b.end()); };
+        cat(position, o.position), cat(normal, o.normal), cat(random_normal, o.random_normal);
+        cat(uv, o.uv), cat(height, o.height), cat(material, o.material), cat(label, o.label);
+        cat(fade_begin, o.fade_begin), cat(fade_end, o.fade_end);
+    }
     void truncate(size_t n) {
         position.resize(n), normal.resize(n), random_normal.resize(n), uv.resize(n);
         height.resize(n), material.resize(n), label.resize(n), fade_begin.resize(n);
@@ -50,10 +61,12 @@ struct SurfaceParticles {
 using StrokeKeep = std::function<bool(SurfaceParticles&, size_t i)>;
 
 // Pure: streams keyed by (seed, surface_key, span u, span v), so one section's strokes do not
-// depend on the others or on the span counts elsewhere. Appends to `out`.
+// depend on the others or on the span counts elsewhere. Appends to `out` the rows of sections
+// [first_row, end_row) (end_row < 0: to the last), so callers may emit bands in parallel and
+// concatenate them in order for the same result.
 void emit_surface_strokes(const GridSurface& surface, const SurfaceStrokeParams& params,
                           uint64_t seed, uint64_t surface_key, SurfaceParticles& out,
-                          const StrokeKeep& keep = {});
+                          const StrokeKeep& keep = {}, int first_row = 0, int end_row = -1);
 
 // The same over a quad mesh (rocks, banks): every face is a bilinear patch divided into the
 // params' spans; streams keyed by (seed, surface_key, face, span u, span v).

@@ -1,6 +1,8 @@
 // Terrain, water and rocks to surfaces and strokes, with the materials chosen per particle.
 #include "pipeline/landscape.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -25,7 +27,35 @@ SurfaceStrokeParams strokes_for(const SurfaceStrokeParams& in, const Material& m
     return p;
 }
 
+// emit_surface_strokes over bands of section rows in parallel, one chunk per band in row
+// order: the same particles as one serial call, on any number of threads.
+void emit_bands(const GridSurface& g, const SurfaceStrokeParams& p, uint64_t seed, uint64_t key,
+                float size, BuiltLandscape& out, const StrokeKeep& keep) {
+    constexpr int kRows = 8;
+    const int bands = (std::max(p.particle_spans_v, 1) + kRows - 1) / kRows;
+    const size_t first = out.chunks.size();
+    out.chunks.resize(first + static_cast<size_t>(bands));
+    out.chunk_size.resize(out.chunks.size(), size);
+    tbb::parallel_for(0, bands, [&](int b) {
+        emit_surface_strokes(g, p, seed, key, out.chunks[first + static_cast<size_t>(b)], keep,
+                             b * kRows, (b + 1) * kRows);
+    });
+}
+
 }  // namespace
+
+size_t BuiltLandscape::stroke_count() const {
+    size_t n = 0;
+    for (const auto& c : chunks) n += c.size();
+    return n;
+}
+
+SurfaceParticles BuiltLandscape::all_strokes() const {
+    SurfaceParticles all;
+    all.reserve(stroke_count());
+    for (const auto& c : chunks) all.append(c);
+    return all;
+}
 
 uint32_t terrain_material_at(const SceneDesc& s, const glm::dvec3& world) {
     const TerrainDesc& t = s.terrain;
@@ -45,7 +75,6 @@ uint32_t terrain_material_at(const SceneDesc& s, const glm::dvec3& world) {
 BuiltLandscape build_landscape(const SceneDesc& s) {
     BuiltLandscape out;
     const float density = s.render.surface_density;
-    auto pad_sizes = [&](float size) { out.size.resize(out.strokes.size(), size); };
     if (!s.terrain.present) return out;
     const TerrainDesc& t = s.terrain;
     out.has_terrain = true;
@@ -56,14 +85,13 @@ BuiltLandscape build_landscape(const SceneDesc& s) {
     SurfaceStrokeParams tp = strokes_for(t.strokes, s.materials[t.material], t.material, density,
                                          size);
     const double level = s.water.present ? s.water.level : -1e300;
-    emit_surface_strokes(grid, tp, t.seed, kTerrainKey, out.strokes,
+    emit_bands(grid, tp, t.seed, kTerrainKey, size, out,
                          [&](SurfaceParticles& p, size_t i) {
                              const glm::vec3& ground = p.position[i];
                              if (s.water.present && ground.y < level - 0.02) return false;
                              p.material[i] = terrain_material_at(s, glm::dvec3(ground));
                              return true;
                          });
-    pad_sizes(size);
 
     if (s.water.present) {
         out.has_water = true;
@@ -78,21 +106,21 @@ BuiltLandscape build_landscape(const SceneDesc& s) {
         out.water_mesh = grid_mesh(plane);
         SurfaceStrokeParams wp =
             strokes_for(w.strokes, s.materials[w.material], w.material, density, size);
-        emit_surface_strokes(plane, wp, t.seed, kWaterKey, out.strokes,
+        emit_bands(plane, wp, t.seed, kWaterKey, size, out,
                              [&](SurfaceParticles& p, size_t i) {
                                  const glm::vec3& q = p.position[i];
                                  return terrain_height(t.params, t.seed, q.x, q.z) < level + 0.05;
                              });
-        pad_sizes(size);
-    }
+        }
 
     for (size_t i = 0; i < s.rocks.size(); ++i) {
         const RockDesc& r = s.rocks[i];
         out.rocks.push_back(generate_rock(r.params, r.seed, r.position));
         SurfaceStrokeParams rp =
             strokes_for(r.strokes, s.materials[r.material], r.material, density, size);
-        emit_mesh_strokes(out.rocks.back(), rp, r.seed, kRockKey + i, out.strokes);
-        pad_sizes(size);
+        out.chunks.emplace_back();
+        out.chunk_size.push_back(size);
+        emit_mesh_strokes(out.rocks.back(), rp, r.seed, kRockKey + i, out.chunks.back());
     }
     return out;
 }

@@ -16,8 +16,14 @@ struct BuiltLandscape {
     QuadMesh terrain_mesh;      // world
     QuadMesh water_mesh;        // world, flat at the water level
     std::vector<QuadMesh> rocks;  // world
-    SurfaceParticles strokes;   // material: index into SceneDesc::materials
-    std::vector<float> size;    // per stroke: the sprite's relative size after density
+    // The strokes in chunks (a band of sections of one surface each, in order): emitted in
+    // parallel and painted chunk by chunk, never copied into one array. material: index into
+    // SceneDesc::materials.
+    std::vector<SurfaceParticles> chunks;
+    std::vector<float> chunk_size;  // each chunk's sprite size factor after surface_density
+    size_t stroke_count() const;
+    // All strokes in one array (tests and tools; the painter reads the chunks).
+    SurfaceParticles all_strokes() const;
 };
 
 // Pure in the scene: terrain strokes take their material from noise and the bank mask and are

@@ -473,19 +473,16 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
     const float surface_lift = 2.0f * static_cast<float>(max_displacement) + 0.01f;
 
     t0 = Clock::now();
-    constexpr size_t kChunk = 4096;
-    const size_t surface_chunks = (land.strokes.size() + kChunk - 1) / kChunk;
-    std::vector<std::vector<Sprite>> per_item(trees.size() + surface_chunks);
+    std::vector<std::vector<Sprite>> per_item(trees.size() + land.chunks.size());
     std::vector<uint64_t> culled(per_item.size(), 0);
     tbb::parallel_for(size_t{0}, per_item.size(), [&](size_t i) {
         FlushDenormals ftz;  // Embree's modes, while this task traces
         std::vector<Sprite>& out = per_item[i];
         if (i >= trees.size()) {
-            const size_t begin = (i - trees.size()) * kChunk;
-            const size_t end = std::min(begin + kChunk, land.strokes.size());
-            const SurfaceParticles& S = land.strokes;
-            out.reserve(end - begin);
-            for (size_t j = begin; j < end; ++j) {
+            const size_t chunk = i - trees.size();
+            const SurfaceParticles& S = land.chunks[chunk];
+            out.reserve(S.size());
+            for (size_t j = 0; j < S.size(); ++j) {
                 const uint32_t mat = static_cast<uint32_t>(2 * nf + S.material[j]);
                 const SpriteMaterial& m = materials[mat];
                 const StrokeShaderParams& p = *m.shader;
@@ -495,7 +492,7 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                     ++culled[i];
                     continue;
                 }
-                const double w = p.sprite_size * land.size[j] *
+                const double w = p.sprite_size * land.chunk_size[chunk] *
                                  inside_size(S.height[j], m.surface->inside_growth);
                 SpriteInput in{world,
                                lighting_normal(S.normal[j], S.random_normal[j],

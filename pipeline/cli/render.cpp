@@ -59,7 +59,7 @@ int run_render(const RenderCommand& cmd) {
              gen_ms,
              std::to_string(trees.size()) + " trees, " + std::to_string(leaves) + " leaves, " +
                  std::to_string(bark) + " bark strokes, " +
-                 std::to_string(land.strokes.size()) + " surface strokes");
+                 std::to_string(land.stroke_count()) + " surface strokes");
         for (const auto& d : plan.decisions) line(d.name, d.ran, d.why, 0, "");
         for (const auto& p : report.passes) line(p.name, p.ran, p.why, p.ms, p.counts);
         line("output", true, "written through OpenImageIO, renamed when complete", out_ms, cmd.out);

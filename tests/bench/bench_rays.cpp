@@ -60,8 +60,9 @@ struct Fixture {
         opaque->add_mesh(cards, anchor);
         filtered->commit();
         opaque->commit();
-        for (size_t i = 0; i < land.strokes.size(); i += 4)
-            origins.push_back(glm::dvec3(land.strokes.position[i]));
+        const SurfaceParticles strokes = land.all_strokes();
+        for (size_t i = 0; i < strokes.size(); i += 4)
+            origins.push_back(glm::dvec3(strokes.position[i]));
     }
 };
 

@@ -66,16 +66,18 @@ TEST(Landscape, BuildsStrokesOfEveryKind) {
     ASSERT_TRUE(land.has_terrain && land.has_water);
     EXPECT_EQ(land.rocks.size(), 1u);
     EXPECT_TRUE(check_mesh(land.rocks[0]).ok());
+    const SurfaceParticles strokes = land.all_strokes();
+    EXPECT_EQ(strokes.size(), land.stroke_count());
     size_t per_material[4] = {0, 0, 0, 0};
-    for (size_t i = 0; i < land.strokes.size(); ++i) ++per_material[land.strokes.material[i]];
+    for (size_t i = 0; i < strokes.size(); ++i) ++per_material[strokes.material[i]];
     for (size_t m = 0; m < 4; ++m) EXPECT_GT(per_material[m], 0u) << s.materials[m].name;
     // No ground stroke under the water; every water stroke over ground below the level.
-    for (size_t i = 0; i < land.strokes.size(); ++i) {
-        const glm::vec3& p = land.strokes.position[i];
+    for (size_t i = 0; i < strokes.size(); ++i) {
+        const glm::vec3& p = strokes.position[i];
         double ground = terrain_height(s.terrain.params, s.terrain.seed, p.x, p.z);
-        if (land.strokes.material[i] == s.water.material) {
+        if (strokes.material[i] == s.water.material) {
             EXPECT_LT(ground, s.water.level + 0.05 + 1e-4);
-        } else if (land.strokes.material[i] != s.rocks[0].material) {
+        } else if (strokes.material[i] != s.rocks[0].material) {
             EXPECT_GE(p.y, s.water.level - 0.02 - 0.1 - 1e-4);
         }
     }
@@ -216,7 +218,7 @@ TEST(LandscapeHardCases, NoRoomForTreesDegenerateRockAndEmptyRegions) {
     replace(R"("water": {"level": 0.0,)", R"("water": {"level": -100,)");
     SceneDesc dry = parse_scene(text, "test");
     BuiltLandscape d = build_landscape(dry);
-    for (uint32_t m : d.strokes.material) EXPECT_NE(m, dry.water.material);
+    for (uint32_t m : d.all_strokes().material) EXPECT_NE(m, dry.water.material);
     expect_finite(paint(dry));
 }
 
