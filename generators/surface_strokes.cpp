@@ -42,27 +42,52 @@ void emit_one(Rng& rng, const SurfaceStrokeParams& p, const glm::vec3& pos, cons
                  static_cast<float>(z));
     double fade_draw = rand1(rng), len_draw = rand_gaussian(rng);
     out.position.push_back(pos + n * static_cast<float>(d));
-    out.normal.push_back(n);
-    out.random_normal.push_back(glm::normalize(rn));
-    out.uv.push_back(uv);
-    out.height.push_back(h);
-    out.material.push_back(p.material);
+    out.normal_code.push_back(encode_unit(n));
+    out.random_code.push_back(encode_unit(glm::normalize(rn)));
+    out.uv_code.push_back(encode_unorm(uv.x) | (static_cast<uint32_t>(encode_unorm(uv.y)) << 16));
+    out.height_code.push_back(encode_unorm(h));
+    out.material.push_back(static_cast<uint16_t>(p.material));
     out.label.push_back(label);
     if (h > p.detail_threshold) {
         // Detail: fades over [begin, begin + len] inside the distance range 0..1.
         double len = std::clamp(p.fade_length + p.fade_length_var * len_draw,
                                 std::max(p.min_fade_length, 1e-3), 1.0);
         double begin = fade_draw * (1 - len);
-        out.fade_begin.push_back(static_cast<float>(begin));
-        out.fade_end.push_back(static_cast<float>(begin + len));
+        const auto b = static_cast<uint32_t>(std::floor(begin * 16384.0));
+        const auto e = static_cast<uint32_t>(std::ceil((begin + len) * 16384.0));
+        out.fade_code.push_back(b | (std::min(e, 16384u) << 16));
     } else {
         // Base strokes never fade: they would open holes in the surface.
-        out.fade_begin.push_back(2.0f);
-        out.fade_end.push_back(3.0f);
+        out.fade_code.push_back((2u * 16384u) | ((3u * 16384u) << 16));
     }
 }
 
 }  // namespace
+
+uint32_t encode_unit(const glm::vec3& n) {
+    const float l1 = std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
+    if (!(l1 > 0.0f) || !std::isfinite(l1)) return encode_unit({0, 1, 0});
+    float x = n.x / l1, y = n.y / l1;
+    if (n.z < 0.0f) {  // fold the lower half over the diagonals
+        const float fx = (1.0f - std::abs(y)) * (x >= 0.0f ? 1.0f : -1.0f);
+        const float fy = (1.0f - std::abs(x)) * (y >= 0.0f ? 1.0f : -1.0f);
+        x = fx, y = fy;
+    }
+    auto q = [](float v) {
+        return static_cast<uint32_t>(std::lround((std::clamp(v, -1.0f, 1.0f) * 0.5f + 0.5f) * 65535.0f));
+    };
+    return q(x) | (q(y) << 16);
+}
+
+glm::vec3 decode_unit(uint32_t code) {
+    const float x = static_cast<float>(code & 0xffffu) / 65535.0f * 2.0f - 1.0f;
+    const float y = static_cast<float>(code >> 16) / 65535.0f * 2.0f - 1.0f;
+    glm::vec3 n(x, y, 1.0f - std::abs(x) - std::abs(y));
+    const float t = std::max(-n.z, 0.0f);
+    n.x += n.x >= 0.0f ? -t : t;
+    n.y += n.y >= 0.0f ? -t : t;
+    return glm::normalize(n);
+}
 
 void emit_surface_strokes(const GridSurface& g, const SurfaceStrokeParams& p, uint64_t seed,
                           uint64_t surface_key, SurfaceParticles& out, const StrokeKeep& keep,

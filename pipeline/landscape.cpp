@@ -89,7 +89,7 @@ BuiltLandscape build_landscape(const SceneDesc& s) {
                          [&](SurfaceParticles& p, size_t i) {
                              const glm::vec3& ground = p.position[i];
                              if (s.water.present && ground.y < level - 0.02) return false;
-                             p.material[i] = terrain_material_at(s, glm::dvec3(ground));
+                             p.material[i] = static_cast<uint16_t>(terrain_material_at(s, glm::dvec3(ground)));
                              return true;
                          });
 

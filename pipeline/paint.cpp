@@ -139,13 +139,13 @@ bool make_sprite(const SceneDesc& scene, const FramePlan& plan, const SpriteMate
         const SurfaceParticles& S = *in.surface;
         // Fig. 25: a surface seen edge-on keeps only the middle of its sprites' height.
         glm::vec3 to_eye(glm::normalize(cam.eye - in.world));
-        l *= crest_factor(glm::dot(S.normal[in.index], to_eye), m.surface->crest_shrink);
+        l *= crest_factor(glm::dot(S.normal(in.index), to_eye), m.surface->crest_shrink);
         // Detail strokes fade over their own span of the distance value (IV.7).
-        const float fb = S.fade_begin[in.index];
+        const float fb = S.fade_begin(in.index);
         if (fb <= 1.0f) {
             float dv = color_detail::unit_in(static_cast<float>(z), scene.atmosphere.near_distance,
                                              scene.atmosphere.far_distance);
-            opacity = 1.0f - smoothstep(fb, S.fade_end[in.index], dv);
+            opacity = 1.0f - smoothstep(fb, S.fade_end(in.index), dv);
             if (!(opacity > 0.0f)) return false;
         }
     }
@@ -184,7 +184,7 @@ bool make_sprite(const SceneDesc& scene, const FramePlan& plan, const SpriteMate
                              plan.atmosphere && has_atmosphere_effect(p));
     if (in.surface) {
         const SurfaceParticles& S = *in.surface;
-        const float h = S.height[in.index];
+        const float h = S.height(in.index);
         float l = surface_lightness(*m.surface, n_dot_l, h);
         if (in.shadow < 1.0f) l *= shadow_remap(in.shadow, p.shadow_bias);
         out.k.lightness = l;
@@ -488,14 +488,15 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                 const StrokeShaderParams& p = *m.shader;
                 const glm::dvec3 world(S.position[j]);
                 const float lift = surface_lift;
-                if (!visible(world, &S.normal[j], lift)) {
+                const glm::vec3 n = S.normal(j);
+                if (!visible(world, &n, lift)) {
                     ++culled[i];
                     continue;
                 }
                 const double w = p.sprite_size * land.chunk_size[chunk] *
-                                 inside_size(S.height[j], m.surface->inside_growth);
+                                 inside_size(S.height(j), m.surface->inside_growth);
                 SpriteInput in{world,
-                               lighting_normal(S.normal[j], S.random_normal[j],
+                               lighting_normal(n, S.random_normal(j),
                                                m.surface->random_normal_weight),
                                glm::vec3(0, 1, 0),
                                w,
@@ -506,7 +507,7 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                                0};
                 in.surface = &S;
                 in.index = j;
-                in.shadow = light_at(world, &S.normal[j], lift);
+                in.shadow = light_at(world, &n, lift);
                 Sprite sp;
                 if (make_sprite(scene, plan, m, mat, in, sp))
                     out.push_back(sp);

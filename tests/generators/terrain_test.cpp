@@ -87,31 +87,55 @@ TEST(SurfaceStrokes, CountsRangesAndTheDetailSplit) {
     std::set<float> labels;
     size_t detail = 0;
     for (size_t i = 0; i < s.size(); ++i) {
-        EXPECT_GE(s.height[i], 0.0f);
-        EXPECT_LE(s.height[i], 1.0f);
-        EXPECT_NEAR(glm::length(s.normal[i]), 1.0f, 1e-5f);
-        EXPECT_NEAR(glm::length(s.random_normal[i]), 1.0f, 1e-5f);
-        EXPECT_GE(s.uv[i].x, 0.0f);
-        EXPECT_LE(s.uv[i].y, 1.0f);
+        EXPECT_GE(s.height(i), 0.0f);
+        EXPECT_LE(s.height(i), 1.0f);
+        EXPECT_NEAR(glm::length(s.normal(i)), 1.0f, 1e-5f);
+        EXPECT_NEAR(glm::length(s.random_normal(i)), 1.0f, 1e-5f);
+        EXPECT_GE(s.uv(i).x, 0.0f);
+        EXPECT_LE(s.uv(i).y, 1.0f);
         EXPECT_EQ(s.material[i], 3u);
         labels.insert(s.label[i]);
         // The particle sits displacement * normal off the surface point at its uv.
         glm::vec3 on, n;
-        eval_grid(g, s.uv[i].x, s.uv[i].y, on, n);
+        eval_grid(g, s.uv(i).x, s.uv(i).y, on, n);
         float d = glm::dot(s.position[i] - on, n);
-        EXPECT_NEAR(d, (s.height[i] * 2 - 1) * 0.3f, 1e-3f);
-        if (s.height[i] > p.detail_threshold) {
+        EXPECT_NEAR(d, (s.height(i) * 2 - 1) * 0.3f, 1e-3f);
+        if (s.height(i) > p.detail_threshold) {
             ++detail;
-            EXPECT_GE(s.fade_begin[i], 0.0f);
-            EXPECT_LE(s.fade_end[i], 1.0f + 1e-6f);
-            EXPECT_GE(s.fade_end[i] - s.fade_begin[i], p.min_fade_length - 1e-6);
+            EXPECT_GE(s.fade_begin(i), 0.0f);
+            EXPECT_LE(s.fade_end(i), 1.0f + 1e-6f);
+            EXPECT_GE(s.fade_end(i) - s.fade_begin(i), p.min_fade_length - 1e-6);
         } else {
-            EXPECT_GT(s.fade_begin[i], 1.0f);  // base strokes never fade
+            EXPECT_GT(s.fade_begin(i), 1.0f);  // base strokes never fade
         }
     }
     EXPECT_EQ(labels.size(), s.size());
     // Heights are uniform: about 40% above 0.6.
     EXPECT_NEAR(double(detail) / s.size(), 0.4, 0.06);
+}
+
+// Particles are packed (36 bytes): unit vectors to within 1e-4 rad, 0..1 values to within
+// half a step of 1/65534 with 0, 0.5 and 1 exact.
+TEST(SurfaceStrokes, PackedValuesRoundTrip) {
+    Rng rng = make_rng(9, Purpose::kSurface, 77);
+    for (int i = 0; i < 20000; ++i) {
+        double z = rand_range(rng, -1.0, 1.0), a = rand_range(rng, 0.0, 2 * M_PI);
+        double r = std::sqrt(1 - z * z);
+        glm::vec3 n(float(r * std::cos(a)), float(r * std::sin(a)), float(z));
+        if (i < 6) n = glm::vec3(0.0f), n[i % 3] = i < 3 ? 1.0f : -1.0f;  // the axes
+        glm::vec3 back = decode_unit(encode_unit(n));
+        ASSERT_NEAR(glm::length(back), 1.0f, 1e-6f);
+        ASSERT_LT(glm::length(back - n), 1e-4f) << n.x << " " << n.y << " " << n.z;  // chord ~ angle
+        float x = float(rand1(rng));
+        ASSERT_NEAR(decode_unorm(encode_unorm(x)), x, 0.5f / 65534.0f + 1e-7f);
+    }
+    for (float x : {0.0f, 0.5f, 1.0f}) EXPECT_EQ(decode_unorm(encode_unorm(x)), x);
+    EXPECT_EQ(decode_unorm(encode_unorm(-3.0f)), 0.0f);
+    EXPECT_EQ(decode_unorm(encode_unorm(7.0f)), 1.0f);
+    EXPECT_LT(glm::length(decode_unit(encode_unit(glm::vec3(0.0f))) - glm::vec3(0, 1, 0)), 1e-4f);
+    EXPECT_EQ(sizeof(glm::vec3) + 3 * sizeof(uint32_t) + 2 * sizeof(uint16_t) + sizeof(float) +
+                  sizeof(uint32_t),
+              36u);
 }
 
 TEST(SurfaceStrokes, SectionsAreKeyedAndHardCasesEmitSafely) {
@@ -132,7 +156,7 @@ TEST(SurfaceStrokes, SectionsAreKeyedAndHardCasesEmitSafely) {
     p.displacement_height = 0;
     SurfaceParticles flat;
     emit_surface_strokes(g, p, 5, 1, flat);
-    for (float h : flat.height) EXPECT_EQ(h, 0.5f);
+    for (size_t i = 0; i < flat.size(); ++i) EXPECT_EQ(flat.height(i), 0.5f);
     GridSurface empty;
     emit_surface_strokes(empty, p, 5, 1, none);
     EXPECT_EQ(none.size(), 0u);
