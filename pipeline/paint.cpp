@@ -6,6 +6,7 @@
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <memory>
@@ -38,11 +39,26 @@ struct SpriteMaterial {
 
 enum SpriteKind : uint8_t { kLeaf, kBark, kSurface };
 
+// Shadows per fragment: the light at a 4 x 4 grid of points over the sprite, interpolated.
+constexpr int kGrid = 4;
+using ShadowGrid = std::array<float, kGrid * kGrid>;
+
+float grid_at(const ShadowGrid& g, float s, float t) {
+    const float x = std::clamp(s * kGrid - 0.5f, 0.0f, kGrid - 1.0f);
+    const float y = std::clamp(t * kGrid - 0.5f, 0.0f, kGrid - 1.0f);
+    const int i = std::min(static_cast<int>(x), kGrid - 2), j = std::min(static_cast<int>(y), kGrid - 2);
+    const float fx = x - i, fy = y - j;
+    const float* r0 = &g[static_cast<size_t>(j) * kGrid + i];
+    const float* r1 = r0 + kGrid;
+    return (r0[0] * (1 - fx) + r0[1] * fx) * (1 - fy) + (r1[0] * (1 - fx) + r1[1] * fx) * fy;
+}
+
 struct Sprite {
     float x = 0, y = 0, depth = 0;
     float half_w = 0, half_l = 0;  // across and along the stroke, pixels
     float ax = 0, ay = 1;          // unit screen direction of the stroke's length
     float opacity = 1;  // detail strokes fading with distance (IV.7)
+    int32_t grid = -1;  // its shadow grid, with shadows per fragment
     uint32_t material = 0;
     uint32_t object_id = 0;
     uint8_t kind = kLeaf;
@@ -474,10 +490,38 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
 
     t0 = Clock::now();
     std::vector<std::vector<Sprite>> per_item(trees.size() + land.chunks.size());
+    std::vector<std::vector<ShadowGrid>> per_item_grids(per_item.size());
+    const bool fragment_shadows = sun_rays && rs.shadow_samples == "fragment";
+    // The sprite of one particle with its light: one shadow ray at the particle, or a grid of
+    // them over the sprite's footprint (back-projected at the particle's depth).
+    auto add_sprite = [&](SpriteInput& in, const SpriteMaterial& m, uint32_t mat,
+                          const glm::vec3* n, float lift, std::vector<Sprite>& out,
+                          std::vector<ShadowGrid>& grids) {
+        in.shadow = fragment_shadows ? 1.0f : light_at(in.world, n, lift);
+        Sprite sp;
+        if (!make_sprite(scene, plan, m, mat, in, sp)) return false;
+        if (fragment_shadows) {
+            ShadowGrid g;
+            const double world_per_px = sp.depth / cam.focal_px;
+            for (int j = 0; j < kGrid; ++j)
+                for (int i = 0; i < kGrid; ++i) {
+                    const double s = (i + 0.5) / kGrid - 0.5, t = (j + 0.5) / kGrid - 0.5;
+                    const double dx = 2 * s * sp.half_w * sp.ay + 2 * t * sp.half_l * sp.ax;
+                    const double dy = -2 * s * sp.half_w * sp.ax + 2 * t * sp.half_l * sp.ay;
+                    const glm::dvec3 p = in.world + (cam.right * dx - cam.up * dy) * world_per_px;
+                    g[static_cast<size_t>(j) * kGrid + i] = light_at(p, n, lift);
+                }
+            sp.grid = static_cast<int32_t>(grids.size());
+            grids.push_back(g);
+        }
+        out.push_back(sp);
+        return true;
+    };
     std::vector<uint64_t> culled(per_item.size(), 0);
     tbb::parallel_for(size_t{0}, per_item.size(), [&](size_t i) {
         FlushDenormals ftz;  // Embree's modes, while this task traces
         std::vector<Sprite>& out = per_item[i];
+        std::vector<ShadowGrid>& grids = per_item_grids[i];
         if (i >= trees.size()) {
             const size_t chunk = i - trees.size();
             const SurfaceParticles& S = land.chunks[chunk];
@@ -507,12 +551,7 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                                0};
                 in.surface = &S;
                 in.index = j;
-                in.shadow = light_at(world, &n, lift);
-                Sprite sp;
-                if (make_sprite(scene, plan, m, mat, in, sp))
-                    out.push_back(sp);
-                else
-                    ++culled[i];
+                if (!add_sprite(in, m, mat, &n, lift, out, grids)) ++culled[i];
             }
             return;
         }
@@ -536,11 +575,7 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                 }
                 SpriteInput in{world, n,    pl.turn(B.tangent[j]), w, w * p.stroke_aspect, 0.5f,
                                0.5f,  B.label[j], b.tree.id};
-                in.shadow = light_at(world, &n, lift);
-                Sprite sp;
-                if (make_sprite(scene, plan, materials[bark_mat], bark_mat, in, sp))
-                    out.push_back(sp);
-                else
+                if (!add_sprite(in, materials[bark_mat], bark_mat, &n, lift, out, grids))
                     ++culled[i];
             }
         }
@@ -561,16 +596,16 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                            L.branch_distance[j],
                            L.label[j],
                            L.tree_id[j]};
-            in.shadow = light_at(world, nullptr, 0.0f);
-            Sprite sp;
-            if (make_sprite(scene, plan, materials[leaf_mat], leaf_mat, in, sp))
-                out.push_back(sp);
-            else
+            if (!add_sprite(in, materials[leaf_mat], leaf_mat, nullptr, 0.0f, out, grids))
                 ++culled[i];
         }
     });
     std::vector<Sprite> sprites;
+    std::vector<ShadowGrid> grids;
     for (size_t i = 0; i < per_item.size(); ++i) {
+        for (Sprite& sp : per_item[i])
+            if (sp.grid >= 0) sp.grid += static_cast<int32_t>(grids.size());
+        grids.insert(grids.end(), per_item_grids[i].begin(), per_item_grids[i].end());
         for (const Sprite& sp : per_item[i])
             (sp.kind == kLeaf   ? rep.leaf_sprites
              : sp.kind == kBark ? rep.bark_sprites
@@ -579,11 +614,14 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
         rep.culled += culled[i];
     }
     per_item.clear();
+    per_item_grids.clear();
     rep.shadow_rays = shadow_rays;
     rep.passes.push_back(
         {"sprites", true,
          std::string("every particle faces the camera") +
-             (plan.shadows ? "; a shadow ray per particle" : "") +
+             (plan.shadows ? (fragment_shadows ? "; 4 x 4 shadow rays per sprite"
+                                               : "; a shadow ray per particle")
+                           : "") +
              (plan.underpaint ? "; hidden ones culled" : ""),
          ms_since(t0),
          std::to_string(sprites.size()) + " sprites, " + std::to_string(rep.culled) +
@@ -791,7 +829,9 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
             // sized array of ramps is ever held (33 colours a sprite would outweigh the sprite).
             StrokeRamp local_ramp;
             const StrokeRamp* ramp = nullptr;
-            if (rs.palette_lut && !plan.bare_blend) {
+            // Light varying over the sprite moves its lightness per fragment: no ramp then.
+            const ShadowGrid* grid = sp.grid >= 0 ? &grids[static_cast<size_t>(sp.grid)] : nullptr;
+            if (rs.palette_lut && !plan.bare_blend && !grid) {
                 local_ramp = make_ramp(sp.k, *m.palette);
                 ramp = &local_ramp;
             }
@@ -888,8 +928,16 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                     float dx = x + 0.5f - sp.x, dy = y + 0.5f - sp.y;
                     float s = clamp01(0.5f + dx * sx + dy * sy);
                     float t = clamp01(0.5f + dx * txx + dy * tyy);
-                    Color col = ramp ? stroke_color(sp.k, *ramp, s, t)
-                                     : stroke_color(sp.k, *m.palette, s, t);
+                    Color col;
+                    if (grid) {
+                        StrokeConstants k = sp.k;
+                        const float light = grid_at(*grid, s, t);
+                        if (light < 1.0f) k.lightness *= shadow_remap(light, p.shadow_bias);
+                        col = stroke_color(k, *m.palette, s, t);
+                    } else {
+                        col = ramp ? stroke_color(sp.k, *ramp, s, t)
+                                   : stroke_color(sp.k, *m.palette, s, t);
+                    }
                     composite(static_cast<size_t>(y) * cam.width + x, col, a, sp);
                 }
             }

@@ -176,6 +176,10 @@ void visit_scene(SceneDesc& s, V& v) {
         v.text("shadows", r.shadows,
                "How leaf strokes shadow: \"transmissive\" (light dimmed by every stroke crossed) "
                "or \"threshold\" (a stroke blocks where its mask is over one half).");
+        v.text("shadow_samples", r.shadow_samples,
+               "Where shadow rays start: \"particle\" (one per particle, the whole stroke shares "
+               "it) or \"fragment\" (a 4 x 4 grid over each sprite, interpolated per fragment, "
+               "16 times the rays; colours then come from the palette per fragment).");
         v.real("underpaint_scale", r.underpaint_scale, {0.05, 1}, "",
                "Resolution of the underpainting (flat colour under the strokes) over the "
                "image's.");
@@ -542,6 +546,10 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
     if (s.render.shadows != "transmissive" && s.render.shadows != "threshold")
         problems.push_back({"/render/shadows", "expected \"transmissive\" or \"threshold\", got \"" +
                                                    s.render.shadows + "\""});
+    if (s.render.shadow_samples != "particle" && s.render.shadow_samples != "fragment")
+        problems.push_back({"/render/shadow_samples",
+                            "expected \"particle\" or \"fragment\", got \"" +
+                                s.render.shadow_samples + "\""});
     parse_groups(doc, s, problems, plain);
     mark_overrides(problems, overridden);
     if (!problems.empty()) throw InputError(source, problems);

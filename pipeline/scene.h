@@ -49,6 +49,7 @@ struct RenderSettings {
     bool filter_strokes = true;       // at 1 sample per pixel, widen the feather by its footprint
     float bark_coverage = 2.5f;       // bark strokes' area over the limbs' area
     std::string shadows = "transmissive";  // "threshold": a card blocks where its mask > 1/2
+    std::string shadow_samples = "particle";  // "fragment": a 4 x 4 grid of rays per sprite
     float underpaint_scale = 0.5f;         // underpainting resolution over the image's
     float surface_density = 1.0f;          // surface particles per cluster, relative
 };

@@ -54,6 +54,7 @@ int run_bench_accuracy(const BenchCommand& cmd) {
     ref.render.edge_lut = false;
     ref.render.filter_strokes = false;
     ref.render.shadows = "transmissive";
+    ref.render.shadow_samples = "fragment";
     ref.render.underpaint_scale = 1.0f;
     ref.render.surface_density = 4.0f;
     const BuiltLandscape ref_land = build_landscape(ref);
@@ -80,9 +81,13 @@ int run_bench_accuracy(const BenchCommand& cmd) {
     if (scene.sun_casts_shadows) {
         rows.push_back({"shadows", "none", [](SceneDesc& s) { s.sun_casts_shadows = false; }});
         rows.push_back({"shadows", "per particle, threshold at 1/2",
-                        [](SceneDesc& s) { s.render.shadows = "threshold"; }});
+                        [](SceneDesc& s) {
+                            s.render.shadows = "threshold", s.render.shadow_samples = "particle";
+                        }});
         rows.push_back({"shadows", "per particle, transmissive",
-                        [](SceneDesc& s) { s.render.shadows = "transmissive"; }});
+                        [](SceneDesc& s) { s.render.shadow_samples = "particle"; }});
+        rows.push_back({"shadows", "per fragment (4 x 4 rays a sprite), transmissive",
+                        [](SceneDesc& s) { s.render.shadow_samples = "fragment"; }});
     }
     if (landscape) {
         for (float u : {1.0f, 0.5f, 0.25f})
@@ -99,7 +104,8 @@ int run_bench_accuracy(const BenchCommand& cmd) {
         "Reference: %s at %dx%d, 16 samples per pixel, 8 octaves, exact palette and edge "
         "mask%s: %.0f ms.\nEach row changes one setting of the reference.\n\n",
         cmd.scene.c_str(), scene.camera.width, scene.camera.height,
-        landscape ? ", transmissive shadows, full-resolution underpainting, 4x surface density"
+        landscape ? ", transmissive shadows per fragment, full-resolution underpainting, 4x surface "
+                    "density"
                   : "",
         reference.ms);
     std::printf("| setting | value | time (ms) | RMSE | PSNR (dB) |\n|---|---|---:|---:|---:|\n");

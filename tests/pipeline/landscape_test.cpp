@@ -121,6 +121,21 @@ TEST(Landscape, ShadowSceneOnlyWhenTheSunCastsShadows) {
     EXPECT_EQ(trees_only.underpaint_rays, 0u);
 }
 
+// Shadows per fragment: a grid of rays over every sprite, the light varying inside strokes.
+TEST(Landscape, ShadowsPerFragmentTraceAGridPerSprite) {
+    SceneDesc s = parse_scene(landscape(kSun), "test");
+    FrameReport particle, fragment;
+    Frame a = paint(s, &particle);
+    s.render.shadow_samples = "fragment";
+    Frame b = paint(s, &fragment);
+    const uint64_t sprites =
+        fragment.leaf_sprites + fragment.bark_sprites + fragment.surface_sprites;
+    EXPECT_EQ(sprites, particle.leaf_sprites + particle.bark_sprites + particle.surface_sprites);
+    EXPECT_GE(fragment.shadow_rays, 16 * sprites);
+    EXPECT_NE(frame_srgb8(a), frame_srgb8(b));
+    expect_finite(b);
+}
+
 // A flat lit ground and nothing to cast a shadow: shadow rays run and find nothing, so the
 // picture is the same bytes as without shadows, near the origin and 1e5 away, with the sun
 // overhead, at 20 degrees and grazing at 2 degrees.
