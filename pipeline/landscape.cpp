@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "generators/rock.h"
+#include "shading/noise.h"
 
 namespace pleinair {
 
@@ -67,6 +68,14 @@ uint32_t terrain_material_at(const SceneDesc& s, const glm::dvec3& world) {
     if (t.second_material >= 0 &&
         noise_material(u, v, t.material_noise_frequency, t.material_threshold, offset))
         m = static_cast<uint32_t>(t.second_material);
+    for (const MaterialRegion& r : t.regions) {
+        // The rim wanders by a quarter of the radius (slow noise), so a region reads as a
+        // patch of ground, not a drawn circle.
+        const double d = std::hypot(world.x - r.center.x, world.z - r.center.y) / r.radius;
+        const float rim = 0.75f + 0.5f * noise(static_cast<float>(world.x - r.center.x) * 0.35f + 31.7f,
+                                               static_cast<float>(world.z - r.center.y) * 0.35f + 11.3f);
+        if (d < rim) m = r.material;
+    }
     if (t.bank_material >= 0 && s.water.present && world.y < s.water.level + t.bank_height)
         m = static_cast<uint32_t>(t.bank_material);
     return m;

@@ -31,8 +31,8 @@ struct BuiltLandscape {
 // render.surface_density scales the particles per cluster.
 BuiltLandscape build_landscape(const SceneDesc& scene);
 
-// The terrain's material at a world point: the noise picks the second material, the bank mask
-// the bank's. Strokes and the underpainting agree through it.
+// The terrain's material at a world point: the noise picks the second material, a region its
+// own, the bank mask the bank's. Strokes and the underpainting agree through it.
 uint32_t terrain_material_at(const SceneDesc& scene, const glm::dvec3& world);
 
 }  // namespace pleinair

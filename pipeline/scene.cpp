@@ -70,6 +70,14 @@ void visit_hill(Hill& h, V& v) {
 }
 
 template <class V>
+void visit_region(MaterialRegion& r, V& v) {
+    v.vector2("center", r.center, "world units", "(x, z) of the disc.");
+    v.number("radius", r.radius, {0, 1e9}, "world units",
+             "Its radius; the rim wanders between 0.75 and 1.25 of it, by noise.");
+    v.text("material", r.material_name, "Material of the ground's strokes inside it.");
+}
+
+template <class V>
 void visit_water(WaterDesc& w, V& v) {
     v.number("level", w.level, {-1e9, 1e9}, "world units",
              "Height of the still water; painted where the ground lies below it.");
@@ -148,6 +156,7 @@ void visit_scene(SceneDesc& s, V& v) {
         s.terrain.present = true;
         visit_terrain(s.terrain, v);
         v.claim("hills");
+        v.claim("regions");
         visit_strokes(s.terrain.strokes, v);
     });
     v.object("water", "Still water in the terrain's hollows; absent: none", [&] {
@@ -318,6 +327,28 @@ void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
                     visit_hill(hill, hr);
                     hr.finish();
                     t.params.hills.push_back(hill);
+                }
+            }
+        }
+        if (auto regions = tj.find("regions"); regions != tj.end()) {
+            if (!regions->is_array()) {
+                problems.push_back({"/terrain/regions", "expected a list, got " +
+                                                            describe(*regions)});
+            } else {
+                for (size_t i = 0; i < regions->size(); ++i) {
+                    std::string ptr = "/terrain/regions/" + std::to_string(i);
+                    const json& h = (*regions)[i];
+                    if (!h.is_object()) {
+                        problems.push_back({ptr, "expected an object, got " + describe(h)});
+                        continue;
+                    }
+                    MaterialRegion region;
+                    Reader rr(h, problems, plain, ptr);
+                    rr.check_ranges();
+                    visit_region(region, rr);
+                    rr.finish();
+                    region.material = material(region.material_name, ptr + "/material");
+                    t.regions.push_back(region);
                 }
             }
         }
@@ -593,6 +624,13 @@ std::string scene_reference() {
         Hill h;
         visit_hill(h, d);
     });
+    d.object("terrain/regions/N",
+             "A disc of the terrain painted with its own material (later regions win; the bank "
+             "wins over all)",
+             [&] {
+                 MaterialRegion r;
+                 visit_region(r, d);
+             });
     d.object("rocks/N", "One rock of the list: a displaced mesh painted with strokes", [&] {
         RockDesc r;
         r.strokes.particle_spans_u = r.strokes.particle_spans_v = 1;

@@ -63,6 +63,15 @@ struct Material {
     Palette palette;
 };
 
+// A disc of the terrain painted with its own material (a meadow, a sandy path, a patch of
+// bare earth): IV.7's material chosen by a mask.
+struct MaterialRegion {
+    glm::dvec2 center{0.0};  // (x, z)
+    double radius = 10;
+    std::string material_name;
+    uint32_t material = 0;
+};
+
 // The ground: a heightfield turned into strokes. Its material comes from noise (grass and
 // dirt on one hillside) and from a mask (the bank just above the water).
 struct TerrainDesc {
@@ -77,6 +86,7 @@ struct TerrainDesc {
     float material_threshold = 0.62f;
     int32_t bank_material = -1;            // within bank_height above the water
     double bank_height = 0.4;
+    std::vector<MaterialRegion> regions;   // discs painted with their own material
 };
 
 // Still water: a level plane painted where the ground lies below it.

@@ -89,6 +89,30 @@ TEST(Landscape, BuildsStrokesOfEveryKind) {
                     1e-9);
 }
 
+// A region paints its disc with its own material; the bank still wins at the water's edge.
+TEST(Landscape, RegionsPaintTheirDiscWithTheirMaterial) {
+    SceneDesc s = parse_scene(
+        landscape(kSun), "test",
+        {R"(/terrain/regions=[{"center": [-30, 30], "radius": 12, "material": "rock"}])"});
+    ASSERT_EQ(s.terrain.regions.size(), 1u);
+    const SurfaceParticles strokes = build_landscape(s).all_strokes();
+    size_t inside = 0;
+    for (size_t i = 0; i < strokes.size(); ++i) {
+        const glm::vec3& p = strokes.position[i];
+        if (std::hypot(p.x + 30.0, p.z - 30.0) >= 0.75 * 12.0 ||
+            strokes.material[i] == s.water.material)
+            continue;
+        ++inside;
+        const bool bank = p.y < s.water.level + s.terrain.bank_height;
+        if (!bank) {
+            EXPECT_EQ(strokes.material[i], s.rocks[0].material) << p.y;
+        }
+    }
+    EXPECT_GT(inside, 30u);
+    EXPECT_EQ(terrain_material_at(s, {-30, 5, 30}), s.rocks[0].material);
+    EXPECT_NE(terrain_material_at(s, {-30, 5, 60}), s.rocks[0].material);  // 30 away: > 1.25 r
+}
+
 TEST(Landscape, ShadowSceneOnlyWhenTheSunCastsShadows) {
     FrameReport with, without, trees_only;
     SceneDesc lit = parse_scene(landscape(kSun), "test");
