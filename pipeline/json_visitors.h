@@ -346,8 +346,57 @@ inline json parse_document(const std::string& text, const std::string& source,
                            const std::vector<std::string>& overrides,
                            std::vector<Problem>& problems, std::set<std::string>& overridden) {
     json doc;
+    // A key given twice in one object: JSON parsers keep the last, silently; a typo or a
+    // pasted block must not pass unnoticed, so each is a problem of its own.
+    struct Frame {
+        bool array = false;
+        size_t index = 0;
+        std::string key;
+        std::set<std::string> seen;
+    };
+    std::vector<Frame> frames;
+    auto here = [&] {
+        std::string ptr;
+        for (size_t i = 0; i + 1 < frames.size(); ++i) {
+            ptr.push_back('/');
+            ptr.append(frames[i].array ? std::to_string(frames[i].index) : frames[i].key);
+        }
+        return ptr;
+    };
+    auto element_done = [&] {
+        if (!frames.empty() && frames.back().array) ++frames.back().index;
+    };
+    json::parser_callback_t check = [&](int, json::parse_event_t event, json& parsed) {
+        switch (event) {
+            case json::parse_event_t::object_start:
+                frames.push_back({false, 0, "", {}});
+                break;
+            case json::parse_event_t::array_start:
+                frames.push_back({true, 0, "", {}});
+                break;
+            case json::parse_event_t::key: {
+                Frame& f = frames.back();
+                f.key = parsed.get<std::string>();
+                if (!f.seen.insert(f.key).second) {
+                    frames.push_back({});  // so here() includes this object's own key
+                    problems.push_back({here(), "duplicate key: given twice in one object"});
+                    frames.pop_back();
+                }
+                break;
+            }
+            case json::parse_event_t::object_end:
+            case json::parse_event_t::array_end:
+                frames.pop_back();
+                element_done();
+                break;
+            case json::parse_event_t::value:
+                element_done();
+                break;
+        }
+        return true;
+    };
     try {
-        doc = json::parse(text, nullptr, true, /*ignore_comments=*/true);
+        doc = json::parse(text, check, true, /*ignore_comments=*/true);
     } catch (const json::parse_error& e) {
         std::string what = e.what();
         auto pos = what.find("] ");

@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <glm/geometric.hpp>
 
 #include "generators/tree.h"
+#include "generators/tree_mesh.h"
 #include "test_util.h"
 
 namespace pleinair {
@@ -72,6 +74,28 @@ TEST(Trunk, TaperScalesEachRingAndRadiiNeverGrow) {
             for (const auto& b : tree.branches)
                 for (size_t i = 1; i < b.ring_radii.size(); ++i)
                     ASSERT_LE(b.ring_radii[i], b.ring_radii[i - 1]) << name << " seed " << seed;
+        }
+}
+
+// The same, measured on the control mesh itself rather than on the recorded radii: each ring's
+// mean vertex distance from its centroid, along every limb of every shipped family, and a
+// branch's first ring against the parent face it grew from.
+TEST(Trunk, MeasuredRingRadiiNeverGrowAlongALimb) {
+    for (const auto& name : test::shipped_tree_presets())
+        for (uint64_t seed : {1, 2, 3}) {
+            TreeMesh tm;
+            grow_skeleton(tm, test::preset(name), seed);
+            for (const Limb& L : tm.limbs) {
+                double previous = std::numeric_limits<double>::infinity();
+                for (const Ring& ring : L.rings) {
+                    glm::dvec3 c(0);
+                    for (auto v : ring) c += tm.point(v) * 0.25;
+                    double r = 0;
+                    for (auto v : ring) r += 0.25 * glm::length(tm.point(v) - c);
+                    ASSERT_LE(r, previous * (1 + 1e-9)) << name << " seed " << seed;
+                    previous = r;
+                }
+            }
         }
 }
 

@@ -63,6 +63,25 @@ TEST(Presets, UnknownKeysAreErrorsWithASuggestion) {
     EXPECT_EQ(problems_of(R"({"trunk": {"taper": {"base": 0.9, "varr": 0.1}}})").size(), 1u);
 }
 
+// A key given twice is a problem, not "the last one wins": in objects nested in objects and
+// in lists alike, each pointer to the duplicate.
+TEST(Presets, DuplicateKeysAreErrors) {
+    EXPECT_EQ(problems_of(R"({"trunk": {"taper": 0.9, "twist": 3, "taper": 0.5}})"),
+              std::vector<std::string>{
+                  "presets/trees/oak.json: /trunk/taper: duplicate key: given twice in one object"});
+    EXPECT_EQ(problems_of(R"({"unit": 1, "unit": 1})"),
+              std::vector<std::string>{
+                  "presets/trees/oak.json: /unit: duplicate key: given twice in one object"});
+    try {
+        parse_scene(R"({"families": {"a": {"preset": "oak"}},
+                        "trees": [{"family": "a"}, {"family": "a", "seed": 1, "seed": 2}]})",
+                    "s.json");
+        ADD_FAILURE() << "a duplicate seed went through";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), "s.json: /trees/1/seed: duplicate key: given twice in one object");
+    }
+}
+
 TEST(Presets, WrongTypesSayWhatWasExpected) {
     EXPECT_EQ(problems_of(R"({"trunk": {"max_steps": "ten"}})"),
               std::vector<std::string>{"presets/trees/oak.json: /trunk/max_steps: expected a "

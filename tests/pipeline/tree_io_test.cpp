@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
+
 #include <cmath>
 #include <filesystem>
 
@@ -64,6 +67,33 @@ TEST(TreeIo, FarFromOriginWritesFiniteWorldPositions) {
         ASSERT_NEAR(ply.columns["z"][i], expect.z, 0.008);
         ASSERT_NEAR(ply.columns["y"][i], expect.y, 1e-5);
     }
+}
+
+// The meshes too: the render OBJ written for a tree 1e5 away holds its vertices in world space,
+// finite and within a float step of origin + local position.
+TEST(TreeIo, FarFromOriginWritesFiniteWorldMeshes) {
+    auto dir = test::temp_dir("tree-io-far");
+    TreeOptions o;
+    o.origin = {1e5, 3, -1e5};
+    Tree t = generate_tree(test::preset("pine"), 4, o);
+    write_tree(t, "pine", dir / "out");
+    std::ifstream in(dir / "out" / "render.obj");
+    std::string line;
+    size_t i = 0;
+    while (std::getline(in, line)) {
+        if (line.rfind("v ", 0) != 0) continue;
+        std::istringstream v(line.substr(2));
+        double x, y, z;
+        v >> x >> y >> z;
+        ASSERT_LT(i, t.render.positions.size());
+        const glm::dvec3 expect = o.origin + glm::dvec3(t.render.positions[i++]);
+        ASSERT_TRUE(std::isfinite(x) && std::isfinite(y) && std::isfinite(z));
+        ASSERT_NEAR(x, expect.x, 0.008);
+        ASSERT_NEAR(y, expect.y, 1e-4);
+        ASSERT_NEAR(z, expect.z, 0.008);
+    }
+    EXPECT_EQ(i, t.render.positions.size());
+    std::filesystem::remove_all(dir);
 }
 
 TEST(TreeIo, WriteTreeWritesEveryFileAndNoTemporaries) {
