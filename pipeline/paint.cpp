@@ -115,12 +115,8 @@ bool has_atmosphere_effect(const StrokeShaderParams& p) {
            p.dist_value_max < 1;
 }
 
-// Screen size of a world length at view depth z: true perspective scaled by
-// (focus / z)^(1 - stroke_perspective), so strokes shrink less than geometry.
 float stroke_px(const Camera& cam, const RenderSettings& r, double world, double z) {
-    double p = std::clamp<double>(r.stroke_perspective, 0.0, 1.0);
-    double px = cam.focal_px * world / (std::pow(cam.focus_distance, 1.0 - p) * std::pow(z, p));
-    return static_cast<float>(px);
+    return stroke_screen_px(cam, r, world, z);
 }
 
 struct SpriteInput {
@@ -239,6 +235,14 @@ Color background_color(const SceneDesc& s, const Color lin[4], double x, double 
 }
 
 }  // namespace
+
+// True perspective scaled by (focus / z)^(1 - stroke_perspective), so strokes shrink less than
+// geometry.
+float stroke_screen_px(const Camera& cam, const RenderSettings& r, double world, double z) {
+    double p = std::clamp<double>(r.stroke_perspective, 0.0, 1.0);
+    double px = cam.focal_px * world / (std::pow(cam.focus_distance, 1.0 - p) * std::pow(z, p));
+    return static_cast<float>(px);
+}
 
 TreePlacement placement(const BuiltTree& b) {
     return {std::cos(b.rotation * M_PI / 180.0), std::sin(b.rotation * M_PI / 180.0), b.scale,

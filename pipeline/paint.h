@@ -23,6 +23,12 @@ struct BuiltTree {
     double scale = 1;
 };
 
+// Screen size in pixels of a world length at view depth z (thesis ch. I: brush strokes do not
+// shrink like geometry): true perspective at stroke_perspective 1, the size it has at the
+// camera's focus distance whatever the depth at 0, in between otherwise. The painter then
+// enlarges anything under min_stroke_px.
+float stroke_screen_px(const Camera& cam, const RenderSettings& r, double world, double depth);
+
 // A tree's placement in the world: rotation about +y and scale, then its position (in double).
 struct TreePlacement {
     double c = 1, s = 0, scale = 1;

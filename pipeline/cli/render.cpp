@@ -60,7 +60,15 @@ int run_render(const RenderCommand& cmd) {
              std::to_string(trees.size()) + " trees, " + std::to_string(leaves) + " leaves, " +
                  std::to_string(bark) + " bark strokes, " +
                  std::to_string(land.stroke_count()) + " surface strokes");
-        for (const auto& d : plan.decisions) line(d.name, d.ran, d.why, 0, "");
+        // Decisions about effects folded into other passes (tint, atmosphere, sub-stroke colour
+        // are part of every stroke's paint; shadows and underpainting have passes below): no
+        // time of their own.
+        for (const auto& d : plan.decisions) {
+            if (d.ran)
+                std::printf("  %-18s   on          %s\n", d.name.c_str(), d.why.c_str());
+            else
+                line(d.name, false, d.why, 0, "");
+        }
         for (const auto& p : report.passes) line(p.name, p.ran, p.why, p.ms, p.counts);
         line("output", true, "written through OpenImageIO, renamed when complete", out_ms, cmd.out);
         std::printf(

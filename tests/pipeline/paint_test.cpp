@@ -128,6 +128,35 @@ Frame paint_hand(const SceneDesc& s, std::vector<BuiltTree> trees, FrameReport* 
     return paint_frame(s, trees, plan_frame(s, o), rep);
 }
 
+// stroke_perspective: 1 is true perspective (size halves when depth doubles), 0 keeps the
+// size a stroke has at the focus distance, 0.6 is between; min_stroke_px enlarges the far ones.
+TEST(Paint, StrokesShrinkLessThanGeometry) {
+    SceneDesc s = parse_scene(scene_text(kCamera, kTrees), "test");
+    const Camera& cam = s.camera;
+    RenderSettings r;
+    const double f = cam.focus_distance;
+    r.stroke_perspective = 1;
+    EXPECT_NEAR(stroke_screen_px(cam, r, 1.0, 2 * f) / stroke_screen_px(cam, r, 1.0, f), 0.5, 1e-6);
+    EXPECT_NEAR(stroke_screen_px(cam, r, 1.0, f), cam.focal_px / f, 1e-3);
+    r.stroke_perspective = 0;
+    EXPECT_NEAR(stroke_screen_px(cam, r, 1.0, 8 * f), stroke_screen_px(cam, r, 1.0, f), 1e-3);
+    r.stroke_perspective = 0.6f;
+    const double ratio = stroke_screen_px(cam, r, 1.0, 2 * f) / stroke_screen_px(cam, r, 1.0, f);
+    EXPECT_NEAR(ratio, std::pow(0.5, 0.6), 1e-5);
+    // In a frame: a particle far away is drawn no smaller than min_stroke_px.
+    SceneDesc far = bare_scene();
+    far.render.min_stroke_px = 6;
+    far.render.samples = 16;
+    BuiltTree t = hand_tree({{0, 7, -4000}});
+    Frame fr = paint_frame(far, {t}, plan_frame(far, {}));
+    std::vector<uint8_t> bg = frame_srgb8(paint_frame(far, {}, plan_frame(far, {})));
+    std::vector<uint8_t> px = frame_srgb8(fr);
+    size_t changed = 0;
+    for (size_t i = 0; i < px.size(); i += 3) changed += px[i] != bg[i] || px[i + 1] != bg[i + 1];
+    EXPECT_GE(changed, 6u) << "a 6 px stroke covers more than a few pixels";
+    EXPECT_LE(changed, 60u);
+}
+
 TEST(PaintHardCases, ParticlesAtAndBehindTheCameraAreCulled) {
     SceneDesc s = bare_scene();
     FrameReport rep;
