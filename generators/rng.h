@@ -31,12 +31,12 @@ enum class Purpose : uint64_t {
     kBranchGrow = 4,
     kLeafDecide = 5,
     kLeafGrow = 6,
-    kFamily = 7,    // member seeds of a family
-    kLeafLimb = 8,  // per-limb leaf eligibility
-    kBark = 9,      // bark stroke particles, per limb segment
-    kTerrain = 10,  // terrain noise offsets
-    kSurface = 11,  // surface stroke particles, per (surface, span u, span v)
-    kScatter = 12,  // tree placement, per group
+    kFamily = 7,      // member seeds of a family
+    kLeafLimb = 8,    // per-limb leaf eligibility
+    kBark = 9,        // bark stroke particles, per limb segment
+    kTerrain = 10,    // terrain noise offsets
+    kSurface = 11,    // surface stroke particles, per (surface, span u, span v)
+    kScatter = 12,    // tree placement, per group
     kLeafLabel = 13,  // a leaf's label, per (emitter, step)
 };
 

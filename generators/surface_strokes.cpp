@@ -74,7 +74,8 @@ uint32_t encode_unit(const glm::vec3& n) {
         x = fx, y = fy;
     }
     auto q = [](float v) {
-        return static_cast<uint32_t>(std::lround((std::clamp(v, -1.0f, 1.0f) * 0.5f + 0.5f) * 65535.0f));
+        return static_cast<uint32_t>(
+            std::lround((std::clamp(v, -1.0f, 1.0f) * 0.5f + 0.5f) * 65535.0f));
     };
     return q(x) | (q(y) << 16);
 }

@@ -40,13 +40,13 @@ inline float decode_unorm(uint16_t x) { return static_cast<float>(x) / 65534.0f;
 // Struct of arrays, as the raster loop wants (DESIGN.md), packed to 36 bytes a particle: a
 // landscape holds millions of them.
 struct SurfaceParticles {
-    std::vector<glm::vec3> position;  // world
+    std::vector<glm::vec3> position;    // world
     std::vector<uint32_t> normal_code;  // the surface's ("aggregate") normal, unit
     std::vector<uint32_t> random_code;  // uniform on the sphere, unit
     std::vector<uint32_t> uv_code;      // on the source surface, 0..1 (u low, v high)
     std::vector<uint16_t> height_code;  // displacement, 0 = deepest .. 1 = highest
     std::vector<uint16_t> material;
-    std::vector<float> label;           // unique in (0, 1)
+    std::vector<float> label;  // unique in (0, 1)
     // Distance values where a detail stroke starts to fade and is gone, in 1/16384 (begin
     // rounded down, end up, so no fade gets shorter); base strokes never fade (both > 1).
     std::vector<uint32_t> fade_code;
@@ -58,7 +58,9 @@ struct SurfaceParticles {
                 decode_unorm(static_cast<uint16_t>(uv_code[i] >> 16))};
     }
     float height(size_t i) const { return decode_unorm(height_code[i]); }
-    float fade_begin(size_t i) const { return static_cast<float>(fade_code[i] & 0xffffu) / 16384.0f; }
+    float fade_begin(size_t i) const {
+        return static_cast<float>(fade_code[i] & 0xffffu) / 16384.0f;
+    }
     float fade_end(size_t i) const { return static_cast<float>(fade_code[i] >> 16) / 16384.0f; }
 
     size_t size() const { return position.size(); }

@@ -161,8 +161,7 @@ class Reader {
     void seed(const char* key, uint64_t& x, const char*) {
         const json* v = find(key);
         if (!v) return;
-        if (!v->is_number_unsigned() &&
-            !(v->is_number_integer() && v->get<int64_t>() >= 0))
+        if (!v->is_number_unsigned() && !(v->is_number_integer() && v->get<int64_t>() >= 0))
             return fail(key, "expected a whole number >= 0, got " + describe(*v));
         x = v->get<uint64_t>();
     }

@@ -72,8 +72,9 @@ uint32_t terrain_material_at(const SceneDesc& s, const glm::dvec3& world) {
         // The rim wanders by a quarter of the radius (slow noise), so a region reads as a
         // patch of ground, not a drawn circle.
         const double d = std::hypot(world.x - r.center.x, world.z - r.center.y) / r.radius;
-        const float rim = 0.75f + 0.5f * noise(static_cast<float>(world.x - r.center.x) * 0.35f + 31.7f,
-                                               static_cast<float>(world.z - r.center.y) * 0.35f + 11.3f);
+        const float rim =
+            0.75f + 0.5f * noise(static_cast<float>(world.x - r.center.x) * 0.35f + 31.7f,
+                                 static_cast<float>(world.z - r.center.y) * 0.35f + 11.3f);
         if (d < rim) m = r.material;
     }
     if (t.bank_material >= 0 && s.water.present && world.y < s.water.level + t.bank_height)
@@ -91,16 +92,15 @@ BuiltLandscape build_landscape(const SceneDesc& s) {
     out.terrain_mesh = grid_mesh(grid);
 
     float size = 1;
-    SurfaceStrokeParams tp = strokes_for(t.strokes, s.materials[t.material], t.material, density,
-                                         size);
+    SurfaceStrokeParams tp =
+        strokes_for(t.strokes, s.materials[t.material], t.material, density, size);
     const double level = s.water.present ? s.water.level : -1e300;
-    emit_bands(grid, tp, t.seed, kTerrainKey, size, out,
-                         [&](SurfaceParticles& p, size_t i) {
-                             const glm::vec3& ground = p.position[i];
-                             if (s.water.present && ground.y < level - 0.02) return false;
-                             p.material[i] = static_cast<uint16_t>(terrain_material_at(s, glm::dvec3(ground)));
-                             return true;
-                         });
+    emit_bands(grid, tp, t.seed, kTerrainKey, size, out, [&](SurfaceParticles& p, size_t i) {
+        const glm::vec3& ground = p.position[i];
+        if (s.water.present && ground.y < level - 0.02) return false;
+        p.material[i] = static_cast<uint16_t>(terrain_material_at(s, glm::dvec3(ground)));
+        return true;
+    });
 
     if (s.water.present) {
         out.has_water = true;
@@ -115,12 +115,11 @@ BuiltLandscape build_landscape(const SceneDesc& s) {
         out.water_mesh = grid_mesh(plane);
         SurfaceStrokeParams wp =
             strokes_for(w.strokes, s.materials[w.material], w.material, density, size);
-        emit_bands(plane, wp, t.seed, kWaterKey, size, out,
-                             [&](SurfaceParticles& p, size_t i) {
-                                 const glm::vec3& q = p.position[i];
-                                 return terrain_height(t.params, t.seed, q.x, q.z) < level + 0.05;
-                             });
-        }
+        emit_bands(plane, wp, t.seed, kWaterKey, size, out, [&](SurfaceParticles& p, size_t i) {
+            const glm::vec3& q = p.position[i];
+            return terrain_height(t.params, t.seed, q.x, q.z) < level + 0.05;
+        });
+    }
 
     for (size_t i = 0; i < s.rocks.size(); ++i) {
         const RockDesc& r = s.rocks[i];

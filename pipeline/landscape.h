@@ -13,8 +13,8 @@ namespace pleinair {
 
 struct BuiltLandscape {
     bool has_terrain = false, has_water = false;
-    QuadMesh terrain_mesh;      // world
-    QuadMesh water_mesh;        // world, flat at the water level
+    QuadMesh terrain_mesh;        // world
+    QuadMesh water_mesh;          // world, flat at the water level
     std::vector<QuadMesh> rocks;  // world
     // The strokes in chunks (a band of sections of one surface each, in order): emitted in
     // parallel and painted chunk by chunk, never copied into one array. material: index into

@@ -9,11 +9,11 @@
 #include <array>
 #include <atomic>
 #include <chrono>
-#include <memory>
 #include <cmath>
 #include <cstring>
 #include <glm/geometric.hpp>
 #include <limits>
+#include <memory>
 
 #include "generators/rng.h"
 #include "pipeline/rays.h"
@@ -46,7 +46,8 @@ using ShadowGrid = std::array<float, kGrid * kGrid>;
 float grid_at(const ShadowGrid& g, float s, float t) {
     const float x = std::clamp(s * kGrid - 0.5f, 0.0f, kGrid - 1.0f);
     const float y = std::clamp(t * kGrid - 0.5f, 0.0f, kGrid - 1.0f);
-    const int i = std::min(static_cast<int>(x), kGrid - 2), j = std::min(static_cast<int>(y), kGrid - 2);
+    const int i = std::min(static_cast<int>(x), kGrid - 2),
+              j = std::min(static_cast<int>(y), kGrid - 2);
     const float fx = x - i, fy = y - j;
     const float* r0 = &g[static_cast<size_t>(j) * kGrid + i];
     const float* r1 = r0 + kGrid;
@@ -57,8 +58,8 @@ struct Sprite {
     float x = 0, y = 0, depth = 0;
     float half_w = 0, half_l = 0;  // across and along the stroke, pixels
     float ax = 0, ay = 1;          // unit screen direction of the stroke's length
-    float opacity = 1;  // detail strokes fading with distance (IV.7)
-    int32_t grid = -1;  // its shadow grid, with shadows per fragment
+    float opacity = 1;             // detail strokes fading with distance (IV.7)
+    int32_t grid = -1;             // its shadow grid, with shadows per fragment
     uint32_t material = 0;
     uint32_t object_id = 0;
     uint8_t kind = kLeaf;
@@ -136,8 +137,8 @@ struct SpriteInput {
 
 // Projects one particle; returns false if it is culled (behind the camera, not finite, too
 // small, or off screen).
-bool make_sprite(const SceneDesc& scene, const FramePlan& plan, const SpriteMaterial& m, uint32_t mat,
-                 const SpriteInput& in, Sprite& out) {
+bool make_sprite(const SceneDesc& scene, const FramePlan& plan, const SpriteMaterial& m,
+                 uint32_t mat, const SpriteInput& in, Sprite& out) {
     const Camera& cam = scene.camera;
     const StrokeShaderParams& p = *m.shader;
     Projection c = project(cam, in.world);
@@ -190,10 +191,10 @@ bool make_sprite(const SceneDesc& scene, const FramePlan& plan, const SpriteMate
     if (plan.atmosphere)
         d = distance_value(c.depth, scene.atmosphere.near_distance, scene.atmosphere.far_distance,
                            p.dist_curve_bias);
-    out.k = stroke_constants(p, n_dot_l, in.center_distance, in.branch_distance, in.label,
-                             in.tree_id, in.shadow, d, 0.0f,
-                             !in.surface && plan.tint && p.unique_tint_amt > 0,
-                             plan.atmosphere && has_atmosphere_effect(p));
+    out.k =
+        stroke_constants(p, n_dot_l, in.center_distance, in.branch_distance, in.label, in.tree_id,
+                         in.shadow, d, 0.0f, !in.surface && plan.tint && p.unique_tint_amt > 0,
+                         plan.atmosphere && has_atmosphere_effect(p));
     if (in.surface) {
         const SurfaceParticles& S = *in.surface;
         const float h = S.height(in.index);
@@ -446,15 +447,14 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
         rep.sun_scene = true;
     }
     if (plan.underpaint || plan.shadows)
-        rep.passes.push_back({"ray scenes", true, "Embree scenes the plan asks for", ms_since(t0),
-                              (view_rays ? std::to_string(view_rays->mesh_count()) +
-                                               " meshes for the camera"
-                                         : std::string("no camera scene")) +
-                                  (sun_rays ? ", " + std::to_string(sun_rays->mesh_count()) +
-                                                  " meshes + " +
-                                                  std::to_string(sun_rays->caster_count()) +
-                                                  " stroke casters for the sun"
-                                            : std::string(", no shadow scene"))});
+        rep.passes.push_back(
+            {"ray scenes", true, "Embree scenes the plan asks for", ms_since(t0),
+             (view_rays ? std::to_string(view_rays->mesh_count()) + " meshes for the camera"
+                        : std::string("no camera scene")) +
+                 (sun_rays
+                      ? ", " + std::to_string(sun_rays->mesh_count()) + " meshes + " +
+                            std::to_string(sun_rays->caster_count()) + " stroke casters for the sun"
+                      : std::string(", no shadow scene"))});
     const ShadowMode shadow_mode =
         rs.shadows == "threshold" ? ShadowMode::kThreshold : ShadowMode::kTransmissive;
     std::atomic<uint64_t> shadow_rays{0}, view_culled{0};
@@ -475,9 +475,9 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
         glm::dvec3 to_eye = cam.eye - o;
         double dist = glm::length(to_eye);
         if (!(dist > 0)) return true;
-        bool seen = !view_rays->intersect(o, glm::vec3(to_eye / dist),
-                                          static_cast<float>(dist) * 0.999f, n)
-                         .hit;
+        bool seen =
+            !view_rays->intersect(o, glm::vec3(to_eye / dist), static_cast<float>(dist) * 0.999f, n)
+                 .hit;
         if (!seen) ++view_culled;
         return seen;
     };
@@ -543,16 +543,16 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                 }
                 const double w = p.sprite_size * land.chunk_size[chunk] *
                                  inside_size(S.height(j), m.surface->inside_growth);
-                SpriteInput in{world,
-                               lighting_normal(n, S.random_normal(j),
-                                               m.surface->random_normal_weight),
-                               glm::vec3(0, 1, 0),
-                               w,
-                               w * p.stroke_aspect,
-                               0.5f,
-                               0.5f,
-                               S.label[j],
-                               0};
+                SpriteInput in{
+                    world,
+                    lighting_normal(n, S.random_normal(j), m.surface->random_normal_weight),
+                    glm::vec3(0, 1, 0),
+                    w,
+                    w * p.stroke_aspect,
+                    0.5f,
+                    0.5f,
+                    S.label[j],
+                    0};
                 in.surface = &S;
                 in.index = j;
                 if (!add_sprite(in, m, mat, &n, lift, out, grids)) ++culled[i];
@@ -577,8 +577,9 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                     ++culled[i];
                     continue;
                 }
-                SpriteInput in{world, n,    pl.turn(B.tangent[j]), w, w * p.stroke_aspect, 0.5f,
-                               0.5f,  B.label[j], b.tree.id};
+                SpriteInput in{
+                    world,      n,        pl.turn(B.tangent[j]), w, w * p.stroke_aspect, 0.5f, 0.5f,
+                    B.label[j], b.tree.id};
                 if (!add_sprite(in, materials[bark_mat], bark_mat, &n, lift, out, grids))
                     ++culled[i];
             }
@@ -628,8 +629,8 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                            : "") +
              (plan.underpaint ? "; hidden ones culled" : ""),
          ms_since(t0),
-         std::to_string(sprites.size()) + " sprites, " + std::to_string(rep.culled) +
-             " culled (" + std::to_string(view_culled.load()) + " hidden)" +
+         std::to_string(sprites.size()) + " sprites, " + std::to_string(rep.culled) + " culled (" +
+             std::to_string(view_culled.load()) + " hidden)" +
              (plan.shadows ? ", " + std::to_string(rep.shadow_rays) + " shadow rays" : "")});
 
     // Back to front; the index breaks ties so the order is total and thread-independent.
@@ -724,7 +725,8 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
         t0 = Clock::now();
         const int uw = std::max(1, static_cast<int>(std::ceil(cam.width * rs.underpaint_scale)));
         const int uh = std::max(1, static_cast<int>(std::ceil(cam.height * rs.underpaint_scale)));
-        const double fx = static_cast<double>(cam.width) / uw, fy = static_cast<double>(cam.height) / uh;
+        const double fx = static_cast<double>(cam.width) / uw,
+                     fy = static_cast<double>(cam.height) / uh;
         std::vector<Color> ucol(static_cast<size_t>(uw) * uh, Color(0.0f));  // premultiplied
         std::vector<float> ucov(ucol.size(), 0.0f), udepth(ucol.size(), 0.0f);
         tbb::parallel_for(0, uh, [&](int j) {
@@ -743,8 +745,8 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                 const SpriteMaterial& m = materials[mat];
                 const float n_dot_l = glm::dot(n, sun);
                 // A middle-depth stroke's lightness, a little darker: paint under paint.
-                float l = m.surface ? surface_lightness(*m.surface, n_dot_l, 0.5f)
-                                    : clamp01(n_dot_l);
+                float l =
+                    m.surface ? surface_lightness(*m.surface, n_dot_l, 0.5f) : clamp01(n_dot_l);
                 l *= 0.9f;
                 if (plan.shadows) {
                     float sh = light_at(world, &n, 0.01f);
@@ -755,9 +757,9 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                 if (plan.atmosphere)
                     d = distance_value(depth, scene.atmosphere.near_distance,
                                        scene.atmosphere.far_distance, m.shader->dist_curve_bias);
-                StrokeConstants k = stroke_constants(
-                    *m.shader, n_dot_l, 0.5f, 0.5f, 0.5f, 0, 1.0f, d, 0.0f, false,
-                    plan.atmosphere && has_atmosphere_effect(*m.shader));
+                StrokeConstants k =
+                    stroke_constants(*m.shader, n_dot_l, 0.5f, 0.5f, 0.5f, 0, 1.0f, d, 0.0f, false,
+                                     plan.atmosphere && has_atmosphere_effect(*m.shader));
                 const size_t u = static_cast<size_t>(j) * uw + i;
                 ucol[u] = finish_color(k, palette_lookup(*m.palette, l));
                 ucov[u] = 1.0f;
@@ -774,11 +776,12 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                     std::clamp(static_cast<float>((x + 0.5) / fx - 0.5), 0.0f, uw - 1.0f);
                 const int i0 = static_cast<int>(sx), i1 = std::min(i0 + 1, uw - 1);
                 const float wx = sx - i0;
-                const size_t a = static_cast<size_t>(j0) * uw + i0, b = static_cast<size_t>(j0) * uw + i1,
-                             c = static_cast<size_t>(j1) * uw + i0, d = static_cast<size_t>(j1) * uw + i1;
+                const size_t a = static_cast<size_t>(j0) * uw + i0,
+                             b = static_cast<size_t>(j0) * uw + i1,
+                             c = static_cast<size_t>(j1) * uw + i0,
+                             d = static_cast<size_t>(j1) * uw + i1;
                 auto lerp = [](float p, float q, float t) { return p + (q - p) * t; };
-                const float cov =
-                    lerp(lerp(ucov[a], ucov[b], wx), lerp(ucov[c], ucov[d], wx), wy);
+                const float cov = lerp(lerp(ucov[a], ucov[b], wx), lerp(ucov[c], ucov[d], wx), wy);
                 if (!(cov > 0.0f)) continue;
                 const Color col = mix(mix(ucol[a], ucol[b], wx), mix(ucol[c], ucol[d], wx), wy);
                 float* px = &frame.rgba[4 * (static_cast<size_t>(y) * cam.width + x)];
@@ -795,8 +798,7 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
             }
         });
         rep.passes.push_back({"underpaint", true,
-                              "flat palette colour where the camera sees a surface",
-                              ms_since(t0),
+                              "flat palette colour where the camera sees a surface", ms_since(t0),
                               std::to_string(uw) + "x" + std::to_string(uh) + " camera rays"});
     }
 

@@ -73,7 +73,7 @@ struct FrameReport {
     uint64_t leaf_sprites = 0, bark_sprites = 0, surface_sprites = 0, culled = 0;
     uint64_t shadow_rays = 0, underpaint_rays = 0;
     bool view_scene = false, sun_scene = false;  // which Embree scenes were built
-    uint64_t fragments = 0;  // pixel samples evaluated by the stroke shader
+    uint64_t fragments = 0;                      // pixel samples evaluated by the stroke shader
 };
 
 struct PaintOptions {

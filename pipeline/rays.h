@@ -46,11 +46,11 @@ struct RayHit {
 // A leaf stroke as a shadow caster: a square-ish card facing the sun whose opacity is the same
 // stroke mask the painter draws (IV.4.2: shadows fall as brush strokes, never as squares).
 struct StrokeCaster {
-    glm::dvec3 center{0.0};      // world
-    glm::vec3 axis_s{1, 0, 0};   // unit, across the stroke
-    glm::vec3 axis_t{0, 1, 0};   // unit, along it; both perpendicular to the sun
+    glm::dvec3 center{0.0};              // world
+    glm::vec3 axis_s{1, 0, 0};           // unit, across the stroke
+    glm::vec3 axis_t{0, 1, 0};           // unit, along it; both perpendicular to the sun
     float half_w = 0.5f, half_l = 0.5f;  // world units
-    StrokeConstants k;           // noise frequencies and offsets of the stroke
+    StrokeConstants k;                   // noise frequencies and offsets of the stroke
 };
 
 // How a shadow ray treats stroke casters: the opacity of the first card decides (above one

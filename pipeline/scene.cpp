@@ -152,13 +152,14 @@ void visit_scene(SceneDesc& s, V& v) {
         v.real("far", s.atmosphere.far_distance, {0, 1e9}, "world units",
                "View depth where it is full.");
     });
-    v.object("terrain", "The ground: hills and noise, painted as strokes (IV.7); absent: none", [&] {
-        s.terrain.present = true;
-        visit_terrain(s.terrain, v);
-        v.claim("hills");
-        v.claim("regions");
-        visit_strokes(s.terrain.strokes, v);
-    });
+    v.object("terrain", "The ground: hills and noise, painted as strokes (IV.7); absent: none",
+             [&] {
+                 s.terrain.present = true;
+                 visit_terrain(s.terrain, v);
+                 v.claim("hills");
+                 v.claim("regions");
+                 visit_strokes(s.terrain.strokes, v);
+             });
     v.object("water", "Still water in the terrain's hollows; absent: none", [&] {
         s.water.present = true;
         visit_water(s.water, v);
@@ -249,13 +250,38 @@ int32_t find_material(const SceneDesc& s, const std::string& name, const std::st
     return -1;
 }
 
+// A list of objects under `key` of `parent` (absent: nothing): each element gets a reader at
+// its own pointer, checked against the key table `read` visits, unknown keys reported.
+template <class Fn>
+void read_list(const json& parent, const char* key, const std::string& ptr,
+               std::vector<Problem>& problems, std::set<std::string>& plain, Fn&& read) {
+    auto it = parent.find(key);
+    if (it == parent.end()) return;
+    if (!it->is_array()) {
+        problems.push_back({ptr, "expected a list, got " + describe(*it)});
+        return;
+    }
+    for (size_t i = 0; i < it->size(); ++i) {
+        const std::string elem = ptr + "/" + std::to_string(i);
+        const json& j = (*it)[i];
+        if (!j.is_object()) {
+            problems.push_back({elem, "expected an object, got " + describe(j)});
+            continue;
+        }
+        Reader r(j, problems, plain, elem);
+        r.check_ranges();
+        read(j, r, elem);
+        r.finish();
+    }
+}
+
 // Materials, terrain, water and rocks: the landscape under the trees (IV.7).
 void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
                      std::vector<Problem>& problems, std::set<std::string>& plain) {
     if (auto it = doc.find("materials"); it != doc.end()) {
         if (!it->is_object()) {
-            problems.push_back({"/materials", "expected an object of materials, got " +
-                                                  describe(*it)});
+            problems.push_back(
+                {"/materials", "expected an object of materials, got " + describe(*it)});
         } else {
             for (const auto& [name, m] : it->items()) {
                 std::string ptr = "/materials/" + name;
@@ -308,50 +334,22 @@ void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
         TerrainDesc& t = s.terrain;
         for (int k = 0; k < 2; ++k)
             if (!(t.params.max[k] > t.params.min[k]))
-                problems.push_back({"/terrain/max", "must be greater than /terrain/min in x and z"});
+                problems.push_back(
+                    {"/terrain/max", "must be greater than /terrain/min in x and z"});
         const json& tj = doc["terrain"];
-        if (auto hills = tj.find("hills"); hills != tj.end()) {
-            if (!hills->is_array()) {
-                problems.push_back({"/terrain/hills", "expected a list, got " + describe(*hills)});
-            } else {
-                for (size_t i = 0; i < hills->size(); ++i) {
-                    std::string ptr = "/terrain/hills/" + std::to_string(i);
-                    const json& h = (*hills)[i];
-                    if (!h.is_object()) {
-                        problems.push_back({ptr, "expected an object, got " + describe(h)});
-                        continue;
-                    }
-                    Hill hill;
-                    Reader hr(h, problems, plain, ptr);
-                    hr.check_ranges();
-                    visit_hill(hill, hr);
-                    hr.finish();
-                    t.params.hills.push_back(hill);
-                }
-            }
-        }
-        if (auto regions = tj.find("regions"); regions != tj.end()) {
-            if (!regions->is_array()) {
-                problems.push_back({"/terrain/regions", "expected a list, got " +
-                                                            describe(*regions)});
-            } else {
-                for (size_t i = 0; i < regions->size(); ++i) {
-                    std::string ptr = "/terrain/regions/" + std::to_string(i);
-                    const json& h = (*regions)[i];
-                    if (!h.is_object()) {
-                        problems.push_back({ptr, "expected an object, got " + describe(h)});
-                        continue;
-                    }
-                    MaterialRegion region;
-                    Reader rr(h, problems, plain, ptr);
-                    rr.check_ranges();
-                    visit_region(region, rr);
-                    rr.finish();
-                    region.material = material(region.material_name, ptr + "/material");
-                    t.regions.push_back(region);
-                }
-            }
-        }
+        read_list(tj, "hills", "/terrain/hills", problems, plain,
+                  [&](const json&, Reader& r, const std::string&) {
+                      Hill hill;
+                      visit_hill(hill, r);
+                      t.params.hills.push_back(hill);
+                  });
+        read_list(tj, "regions", "/terrain/regions", problems, plain,
+                  [&](const json&, Reader& r, const std::string& ptr) {
+                      MaterialRegion region;
+                      visit_region(region, r);
+                      region.material = material(region.material_name, ptr + "/material");
+                      t.regions.push_back(region);
+                  });
         t.material = material(t.material_name, "/terrain/material");
         if (!t.second_material_name.empty())
             t.second_material =
@@ -365,82 +363,56 @@ void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
         s.water.material = material(s.water.material_name, "/water/material");
     }
 
-    if (auto it = doc.find("rocks"); it != doc.end()) {
-        if (!it->is_array()) {
-            problems.push_back({"/rocks", "expected a list of rocks, got " + describe(*it)});
-        } else {
-            for (size_t i = 0; i < it->size(); ++i) {
-                std::string ptr = "/rocks/" + std::to_string(i);
-                const json& j = (*it)[i];
-                if (!j.is_object()) {
-                    problems.push_back({ptr, "expected an object, got " + describe(j)});
-                    continue;
-                }
-                RockDesc rock;
-                rock.strokes.particle_spans_u = rock.strokes.particle_spans_v = 1;
-                rock.strokes.particles_per_cluster = 3;
-                Reader r(j, problems, plain, ptr);
-                r.check_ranges();
-                visit_rock(rock, r);
-                visit_strokes(rock.strokes, r);
-                r.finish();
-                rock.material = material(rock.material_name, ptr + "/material");
-                s.rocks.push_back(rock);
-            }
-        }
-    }
+    read_list(doc, "rocks", "/rocks", problems, plain,
+              [&](const json&, Reader& r, const std::string& ptr) {
+                  RockDesc rock;
+                  rock.strokes.particle_spans_u = rock.strokes.particle_spans_v = 1;
+                  rock.strokes.particles_per_cluster = 3;
+                  visit_rock(rock, r);
+                  visit_strokes(rock.strokes, r);
+                  rock.material = material(rock.material_name, ptr + "/material");
+                  s.rocks.push_back(rock);
+              });
 }
 
 // Groups scattered over the terrain; each names families with weights.
 void parse_groups(const json& doc, SceneDesc& s, std::vector<Problem>& problems,
                   std::set<std::string>& plain) {
-    auto it = doc.find("groups");
-    if (it == doc.end()) return;
-    if (!it->is_array()) {
-        problems.push_back({"/groups", "expected a list of tree groups, got " + describe(*it)});
-        return;
-    }
-    if (!s.terrain.present) problems.push_back({"/groups", "tree groups need a /terrain"});
-    for (size_t i = 0; i < it->size(); ++i) {
-        std::string ptr = "/groups/" + std::to_string(i);
-        const json& j = (*it)[i];
-        if (!j.is_object()) {
-            problems.push_back({ptr, "expected an object, got " + describe(j)});
-            continue;
-        }
-        TreeGroup g;
-        g.params.weights.clear();
-        Reader r(j, problems, plain, ptr);
-        r.check_ranges();
-        visit_group(g, r);
-        r.claim("families");
-        r.finish();
-        auto fam = j.find("families");
-        if (fam == j.end() || !fam->is_object() || fam->empty()) {
-            problems.push_back({ptr + "/families",
-                                "expected an object of family names to weights, e.g. "
-                                "{\"oak\": 2, \"poplar\": 1}"});
-            continue;
-        }
-        for (const auto& [name, w] : fam->items()) {
-            std::string fptr = ptr + "/families/" + name;
-            if (!w.is_number() || !(w.get<double>() >= 0)) {
-                problems.push_back({fptr, "expected a weight >= 0, got " + describe(w)});
-                continue;
-            }
-            bool found = false;
-            for (size_t k = 0; k < s.families.size(); ++k)
-                if (s.families[k].name == name) {
-                    g.families.push_back(static_cast<uint32_t>(k));
-                    g.params.weights.push_back(w.get<double>());
-                    found = true;
-                }
-            if (!found) problems.push_back({fptr, "no family \"" + name + "\" in /families"});
-        }
-        // No tree with its feet in the water.
-        if (s.water.present) g.params.water_level = s.water.level + 0.05;
-        if (!g.families.empty()) s.groups.push_back(std::move(g));
-    }
+    if (doc.contains("groups") && !s.terrain.present)
+        problems.push_back({"/groups", "tree groups need a /terrain"});
+    read_list(doc, "groups", "/groups", problems, plain,
+              [&](const json& j, Reader& r, const std::string& ptr) {
+                  TreeGroup g;
+                  g.params.weights.clear();
+                  visit_group(g, r);
+                  r.claim("families");
+                  auto fam = j.find("families");
+                  if (fam == j.end() || !fam->is_object() || fam->empty()) {
+                      problems.push_back({ptr + "/families",
+                                          "expected an object of family names to weights, e.g. "
+                                          "{\"oak\": 2, \"poplar\": 1}"});
+                      return;
+                  }
+                  for (const auto& [name, w] : fam->items()) {
+                      std::string fptr = ptr + "/families/" + name;
+                      if (!w.is_number() || !(w.get<double>() >= 0)) {
+                          problems.push_back({fptr, "expected a weight >= 0, got " + describe(w)});
+                          continue;
+                      }
+                      bool found = false;
+                      for (size_t k = 0; k < s.families.size(); ++k)
+                          if (s.families[k].name == name) {
+                              g.families.push_back(static_cast<uint32_t>(k));
+                              g.params.weights.push_back(w.get<double>());
+                              found = true;
+                          }
+                      if (!found)
+                          problems.push_back({fptr, "no family \"" + name + "\" in /families"});
+                  }
+                  // No tree with its feet in the water.
+                  if (s.water.present) g.params.water_level = s.water.level + 0.05;
+                  if (!g.families.empty()) s.groups.push_back(std::move(g));
+              });
 }
 
 }  // namespace
@@ -455,8 +427,7 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
     Reader reader(doc, problems, plain);
     reader.check_ranges();
     visit_scene(s, reader);
-    for (const char* key : {"families", "trees", "materials", "rocks", "groups"})
-        reader.claim(key);
+    for (const char* key : {"families", "trees", "materials", "rocks", "groups"}) reader.claim(key);
     reader.finish();
     parse_landscape(doc, source, s, problems, plain);
 
@@ -575,12 +546,13 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
         }
     }
     if (s.render.shadows != "transmissive" && s.render.shadows != "threshold")
-        problems.push_back({"/render/shadows", "expected \"transmissive\" or \"threshold\", got \"" +
-                                                   s.render.shadows + "\""});
+        problems.push_back(
+            {"/render/shadows",
+             "expected \"transmissive\" or \"threshold\", got \"" + s.render.shadows + "\""});
     if (s.render.shadow_samples != "particle" && s.render.shadow_samples != "fragment")
-        problems.push_back({"/render/shadow_samples",
-                            "expected \"particle\" or \"fragment\", got \"" +
-                                s.render.shadow_samples + "\""});
+        problems.push_back(
+            {"/render/shadow_samples",
+             "expected \"particle\" or \"fragment\", got \"" + s.render.shadow_samples + "\""});
     parse_groups(doc, s, problems, plain);
     mark_overrides(problems, overridden);
     if (!problems.empty()) throw InputError(source, problems);
@@ -641,7 +613,8 @@ std::string scene_reference() {
     d.object("groups/N", "One group of trees scattered over the terrain (Poisson disk)", [&] {
         TreeGroup g;
         visit_group(g, d);
-        d.note("families", "", "Family names to relative weights, e.g. {\"oak\": 2, \"poplar\": 1}.");
+        d.note("families", "",
+               "Family names to relative weights, e.g. {\"oak\": 2, \"poplar\": 1}.");
     });
     return d.out.str();
 }

@@ -48,10 +48,10 @@ struct RenderSettings {
     bool edge_lut = true;             // the edge mask from a table instead of sin and pow
     bool filter_strokes = true;       // at 1 sample per pixel, widen the feather by its footprint
     float bark_coverage = 2.5f;       // bark strokes' area over the limbs' area
-    std::string shadows = "transmissive";  // "threshold": a card blocks where its mask > 1/2
+    std::string shadows = "transmissive";     // "threshold": a card blocks where its mask > 1/2
     std::string shadow_samples = "particle";  // "fragment": a 4 x 4 grid of rays per sprite
-    float underpaint_scale = 0.5f;         // underpainting resolution over the image's
-    float surface_density = 1.0f;          // surface particles per cluster, relative
+    float underpaint_scale = 0.5f;            // underpainting resolution over the image's
+    float surface_density = 1.0f;             // surface particles per cluster, relative
 };
 
 // A named look for surface strokes (grass, dirt, rock, water): a stroke shader with IV.7's
@@ -80,13 +80,13 @@ struct TerrainDesc {
     TerrainParams params;
     SurfaceStrokeParams strokes;
     std::string material_name = "grass", second_material_name, bank_material_name;
-    uint32_t material = 0;                 // index into SceneDesc::materials
-    int32_t second_material = -1;          // chosen where noise > material_threshold
-    float material_noise_frequency = 6;    // cycles over the terrain
+    uint32_t material = 0;               // index into SceneDesc::materials
+    int32_t second_material = -1;        // chosen where noise > material_threshold
+    float material_noise_frequency = 6;  // cycles over the terrain
     float material_threshold = 0.62f;
-    int32_t bank_material = -1;            // within bank_height above the water
+    int32_t bank_material = -1;  // within bank_height above the water
     double bank_height = 0.4;
-    std::vector<MaterialRegion> regions;   // discs painted with their own material
+    std::vector<MaterialRegion> regions;  // discs painted with their own material
 };
 
 // Still water: a level plane painted where the ground lies below it.
@@ -101,7 +101,7 @@ struct WaterDesc {
 struct RockDesc {
     RockParams params;
     uint64_t seed = 1;
-    glm::dvec3 position{0.0};  // with a terrain, y is the height above the ground
+    glm::dvec3 position{0.0};     // with a terrain, y is the height above the ground
     SurfaceStrokeParams strokes;  // spans are per face of the rock mesh
     std::string material_name = "rock";
     uint32_t material = 0;
@@ -109,7 +109,7 @@ struct RockDesc {
 
 // Trees scattered over the terrain (Poisson disk), a weighted mix of families.
 struct TreeGroup {
-    ScatterParams params;          // weights: one per entry of `families`
+    ScatterParams params;  // weights: one per entry of `families`
     std::vector<uint32_t> families;
     uint64_t seed = 1;
 };

@@ -101,30 +101,32 @@ void visit_stroke_shader(P& p, V& v) {
 
 template <class P, class V>
 void visit_surface_shader(P& p, V& v) {
-    v.object("surface", "The generalized stroke shader for surfaces (IV.7); surface materials only",
-             [&] {
-        v.real("random_normal_weight", p.random_normal_weight, {0, 1}, "",
-               "Lighting normal: 0 the surface's (aggregate) normal, 1 the particle's random "
-               "one (Peterson and Lee).");
-        v.real("depth_darken", p.depth_darken, {0, 1}, "lightness",
-               "Lightness taken from the deepest strokes, so detail strokes show on top.");
-        v.real("detail_threshold", p.detail_threshold, {0, 1}, "",
-               "Displacement height (0 deepest, 1 highest) above which a stroke is detail: its "
-               "own frequencies, and it fades with distance (\"Min Out for Fadeoff\").");
-        v.real("base_frequ", p.base_frequ, {0, 256}, "1/sprite", "Noise frequency of base strokes.");
-        v.real("detail_frequ_add", p.detail_frequ_add, {0, 256}, "1/sprite",
-               "Frequency added for detail strokes.");
-        v.real("base_s_frequ", p.base_s_frequ, {0, 64}, "", "Base strokes: factor across (s).");
-        v.real("base_t_frequ", p.base_t_frequ, {0, 64}, "", "Base strokes: factor along (t).");
-        v.real("detail_s_frequ", p.detail_s_frequ, {0, 64}, "",
-               "Detail strokes across: high for grass's thin vertical tufts.");
-        v.real("detail_t_frequ", p.detail_t_frequ, {0, 64}, "", "Detail strokes along.");
-        v.real("crest_shrink", p.crest_shrink, {0, 1}, "",
-               "Height lost by a sprite whose surface is edge-on to the view (Fig. 25), so "
-               "strokes do not stand above a ridge.");
-        v.real("inside_growth", p.inside_growth, {0, 100}, "",
-               "Deepest sprites are 1 + this times the size of the top ones.");
-    });
+    v.object(
+        "surface", "The generalized stroke shader for surfaces (IV.7); surface materials only",
+        [&] {
+            v.real("random_normal_weight", p.random_normal_weight, {0, 1}, "",
+                   "Lighting normal: 0 the surface's (aggregate) normal, 1 the particle's random "
+                   "one (Peterson and Lee).");
+            v.real("depth_darken", p.depth_darken, {0, 1}, "lightness",
+                   "Lightness taken from the deepest strokes, so detail strokes show on top.");
+            v.real("detail_threshold", p.detail_threshold, {0, 1}, "",
+                   "Displacement height (0 deepest, 1 highest) above which a stroke is detail: its "
+                   "own frequencies, and it fades with distance (\"Min Out for Fadeoff\").");
+            v.real("base_frequ", p.base_frequ, {0, 256}, "1/sprite",
+                   "Noise frequency of base strokes.");
+            v.real("detail_frequ_add", p.detail_frequ_add, {0, 256}, "1/sprite",
+                   "Frequency added for detail strokes.");
+            v.real("base_s_frequ", p.base_s_frequ, {0, 64}, "", "Base strokes: factor across (s).");
+            v.real("base_t_frequ", p.base_t_frequ, {0, 64}, "", "Base strokes: factor along (t).");
+            v.real("detail_s_frequ", p.detail_s_frequ, {0, 64}, "",
+                   "Detail strokes across: high for grass's thin vertical tufts.");
+            v.real("detail_t_frequ", p.detail_t_frequ, {0, 64}, "", "Detail strokes along.");
+            v.real("crest_shrink", p.crest_shrink, {0, 1}, "",
+                   "Height lost by a sprite whose surface is edge-on to the view (Fig. 25), so "
+                   "strokes do not stand above a ridge.");
+            v.real("inside_growth", p.inside_growth, {0, 100}, "",
+                   "Deepest sprites are 1 + this times the size of the top ones.");
+        });
 }
 
 }  // namespace

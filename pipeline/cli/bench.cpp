@@ -80,8 +80,7 @@ int run_bench_accuracy(const BenchCommand& cmd) {
     };
     if (scene.sun_casts_shadows) {
         rows.push_back({"shadows", "none", [](SceneDesc& s) { s.sun_casts_shadows = false; }});
-        rows.push_back({"shadows", "per particle, threshold at 1/2",
-                        [](SceneDesc& s) {
+        rows.push_back({"shadows", "per particle, threshold at 1/2", [](SceneDesc& s) {
                             s.render.shadows = "threshold", s.render.shadow_samples = "particle";
                         }});
         rows.push_back({"shadows", "per particle, transmissive",
@@ -96,17 +95,18 @@ int run_bench_accuracy(const BenchCommand& cmd) {
         for (float d : {0.25f, 0.5f, 1.0f, 2.0f, 4.0f}) {
             char label[48];
             std::snprintf(label, sizeof label, "%.2gx the scene's", d);
-            rows.push_back({"surface density", label,
-                            [d](SceneDesc& s) { s.render.surface_density = d; }});
+            rows.push_back(
+                {"surface density", label, [d](SceneDesc& s) { s.render.surface_density = d; }});
         }
     }
     std::printf(
         "Reference: %s at %dx%d, 16 samples per pixel, 8 octaves, exact palette and edge "
         "mask%s: %.0f ms.\nEach row changes one setting of the reference.\n\n",
         cmd.scene.c_str(), scene.camera.width, scene.camera.height,
-        landscape ? ", transmissive shadows per fragment, full-resolution underpainting, 4x surface "
-                    "density"
-                  : "",
+        landscape
+            ? ", transmissive shadows per fragment, full-resolution underpainting, 4x surface "
+              "density"
+            : "",
         reference.ms);
     std::printf("| setting | value | time (ms) | RMSE | PSNR (dB) |\n|---|---|---:|---:|---:|\n");
     for (const Row& row : rows) {

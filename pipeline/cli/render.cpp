@@ -58,8 +58,8 @@ int run_render(const RenderCommand& cmd) {
         line("generate", true, "trees grown from their presets, surfaces turned into strokes",
              gen_ms,
              std::to_string(trees.size()) + " trees, " + std::to_string(leaves) + " leaves, " +
-                 std::to_string(bark) + " bark strokes, " +
-                 std::to_string(land.stroke_count()) + " surface strokes");
+                 std::to_string(bark) + " bark strokes, " + std::to_string(land.stroke_count()) +
+                 " surface strokes");
         // Decisions about effects folded into other passes (tint, atmosphere, sub-stroke colour
         // are part of every stroke's paint; shadows and underpainting have passes below): no
         // time of their own.

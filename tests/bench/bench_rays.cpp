@@ -86,8 +86,8 @@ void shadow_rays(benchmark::State& state, bool filter) {
         });
         rays += f.origins.size();
     }
-    state.counters["rays_per_s"] = benchmark::Counter(static_cast<double>(rays),
-                                                      benchmark::Counter::kIsRate);
+    state.counters["rays_per_s"] =
+        benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
     state.counters["lit_fraction"] = static_cast<double>(lit) / static_cast<double>(rays);
     state.counters["rays"] = static_cast<double>(f.origins.size());
 }

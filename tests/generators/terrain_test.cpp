@@ -125,7 +125,8 @@ TEST(SurfaceStrokes, PackedValuesRoundTrip) {
         if (i < 6) n = glm::vec3(0.0f), n[i % 3] = i < 3 ? 1.0f : -1.0f;  // the axes
         glm::vec3 back = decode_unit(encode_unit(n));
         ASSERT_NEAR(glm::length(back), 1.0f, 1e-6f);
-        ASSERT_LT(glm::length(back - n), 1e-4f) << n.x << " " << n.y << " " << n.z;  // chord ~ angle
+        ASSERT_LT(glm::length(back - n), 1e-4f)
+            << n.x << " " << n.y << " " << n.z;  // chord ~ angle
         float x = float(rand1(rng));
         ASSERT_NEAR(decode_unorm(encode_unorm(x)), x, 0.5f / 65534.0f + 1e-7f);
     }

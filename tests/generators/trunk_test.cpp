@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <limits>
 #include <glm/geometric.hpp>
+#include <limits>
 
 #include "generators/tree.h"
 #include "generators/tree_mesh.h"

@@ -24,26 +24,31 @@ std::string landscape(const std::string& sun, double o = 0, const std::string& e
     if (cam.empty()) cam.append("[").append(x(0)).append(", 3, ").append(x(40)).append("]");
     return R"({"camera": {"position": )" + cam + R"(, "look_at": [)" + x(0) + ", 4, " + x(-10) +
            R"(], "fov": 50, "width": 96, "height": 64},
-        "sun": )" + sun + R"(,
+        "sun": )" +
+           sun + R"(,
         "atmosphere": {"near": 10, "far": 150},
         "materials": {"grass": {"shader": "grass"}, "earth": {"shader": "earth"},
                       "water": {"shader": "water"}, "rock": {"shader": "rock"}},
-        "terrain": {"seed": 2, "min": [)" + x(-60) + ", " + x(-80) + "], \"max\": [" + x(60) +
-           ", " + x(50) + R"(], "resolution": 49,
-                    "hills": [{"center": [)" + x(-20) + ", " + x(-40) + R"(], "radius": 25,
+        "terrain": {"seed": 2, "min": [)" +
+           x(-60) + ", " + x(-80) + "], \"max\": [" + x(60) + ", " + x(50) + R"(], "resolution": 49,
+                    "hills": [{"center": [)" +
+           x(-20) + ", " + x(-40) + R"(], "radius": 25,
                                "height": 6},
-                              {"center": [)" + x(15) + ", " + x(5) + R"(], "radius": 15,
+                              {"center": [)" +
+           x(15) + ", " + x(5) + R"(], "radius": 15,
                                "height": -2}],
                     "material": "grass", "second_material": "earth", "bank_material": "earth",
                     "strokes": {"particle_spans_u": 50, "particle_spans_v": 50,
                                 "particles_per_cluster": 2}},
         "water": {"level": 0.0, "strokes": {"particle_spans_u": 10, "particle_spans_v": 10}},
-        "rocks": [{"seed": 1, "position": [)" + x(-6) + ", 0.2, " + x(20) + R"(]}],
+        "rocks": [{"seed": 1, "position": [)" +
+           x(-6) + ", 0.2, " + x(20) + R"(]}],
         "families": {"birch": {"preset": "birch"}, "shrub": {"preset": "shrub"}},
-        "groups": [{"seed": 1, "center": [)" + x(-15) + ", " + x(-30) + R"(], "radius": 14,
+        "groups": [{"seed": 1, "center": [)" +
+           x(-15) + ", " + x(-30) + R"(], "radius": 14,
                     "min_distance": 7, "max_trees": 4, "families": {"birch": 1, "shrub": 1}}],
-        "trees": [{"family": "birch", "seed": 3, "position": [)" + x(8) + ", 0, " + x(18) +
-           "]}]" + extra + "}";
+        "trees": [{"family": "birch", "seed": 3, "position": [)" +
+           x(8) + ", 0, " + x(18) + "]}]" + extra + "}";
 }
 
 const char* kSun = R"({"direction": [-0.5, 0.6, 0.4], "casts_shadows": true})";
@@ -166,20 +171,21 @@ TEST(Landscape, ShadowsPerFragmentTraceAGridPerSprite) {
 TEST(Landscape, LitFlatGroundWithoutCastersHasNoShadowedStroke) {
     for (double far : {0.0, 1e5})
         for (double elevation : {90.0, 20.0, 2.0}) {
-            SCOPED_TRACE("far " + std::to_string(far) + ", elevation " +
-                         std::to_string(elevation));
+            SCOPED_TRACE("far " + std::to_string(far) + ", elevation " + std::to_string(elevation));
             double e = elevation * M_PI / 180;
             auto text = [&](bool shadows) {
                 auto x = [&](double v) { return std::to_string(v + far); };
                 return R"({"camera": {"position": [)" + x(0) + ", 2, " + x(30) +
                        R"(], "look_at": [)" + x(0) + ", 0, " + x(-10) +
                        R"(], "width": 64, "height": 48},
-                    "sun": {"direction": [)" + std::to_string(0.6 * std::cos(e)) + ", " +
-                       std::to_string(std::sin(e)) + ", " + std::to_string(0.8 * std::cos(e)) +
+                    "sun": {"direction": [)" +
+                       std::to_string(0.6 * std::cos(e)) + ", " + std::to_string(std::sin(e)) +
+                       ", " + std::to_string(0.8 * std::cos(e)) +
                        "], \"casts_shadows\": " + (shadows ? "true" : "false") + R"(},
                     "materials": {"grass": {"shader": "grass"}},
-                    "terrain": {"min": [)" + x(-50) + ", " + x(-50) + "], \"max\": [" + x(50) +
-                       ", " + x(50) + R"(], "noise_amplitude": 0, "resolution": 9,
+                    "terrain": {"min": [)" +
+                       x(-50) + ", " + x(-50) + "], \"max\": [" + x(50) + ", " + x(50) +
+                       R"(], "noise_amplitude": 0, "resolution": 9,
                                 "strokes": {"particle_spans_u": 40, "particle_spans_v": 40,
                                             "particles_per_cluster": 2}}})";
             };
@@ -245,7 +251,8 @@ TEST(LandscapeHardCases, NoRoomForTreesDegenerateRockAndEmptyRegions) {
     };
     replace(R"("center": [-15.000000, -30.000000], "radius": 14)",
             R"("center": [15, 5], "radius": 2)");
-    replace(R"("rocks": [{"seed": 1,)", R"("rocks": [{"radius": 0, "scale": [0, 0, 0], "roughness": 0.9, "seed": 1,)");
+    replace(R"("rocks": [{"seed": 1,)",
+            R"("rocks": [{"radius": 0, "scale": [0, 0, 0], "roughness": 0.9, "seed": 1,)");
     SceneDesc s = parse_scene(text, "test");
     EXPECT_EQ(s.trees.size(), s.explicit_trees);
     BuiltLandscape land = build_landscape(s);

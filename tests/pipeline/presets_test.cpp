@@ -66,9 +66,10 @@ TEST(Presets, UnknownKeysAreErrorsWithASuggestion) {
 // A key given twice is a problem, not "the last one wins": in objects nested in objects and
 // in lists alike, each pointer to the duplicate.
 TEST(Presets, DuplicateKeysAreErrors) {
-    EXPECT_EQ(problems_of(R"({"trunk": {"taper": 0.9, "twist": 3, "taper": 0.5}})"),
-              std::vector<std::string>{
-                  "presets/trees/oak.json: /trunk/taper: duplicate key: given twice in one object"});
+    EXPECT_EQ(
+        problems_of(R"({"trunk": {"taper": 0.9, "twist": 3, "taper": 0.5}})"),
+        std::vector<std::string>{
+            "presets/trees/oak.json: /trunk/taper: duplicate key: given twice in one object"});
     EXPECT_EQ(problems_of(R"({"unit": 1, "unit": 1})"),
               std::vector<std::string>{
                   "presets/trees/oak.json: /unit: duplicate key: given twice in one object"});
@@ -78,7 +79,8 @@ TEST(Presets, DuplicateKeysAreErrors) {
                     "s.json");
         ADD_FAILURE() << "a duplicate seed went through";
     } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()), "s.json: /trees/1/seed: duplicate key: given twice in one object");
+        EXPECT_EQ(std::string(e.what()),
+                  "s.json: /trees/1/seed: duplicate key: given twice in one object");
     }
 }
 

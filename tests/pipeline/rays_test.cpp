@@ -112,8 +112,8 @@ TEST(Rays, StrokeCastersShadowAsTheirMaskNotAsSquares) {
         for (int i = 0; i < 40; ++i) {
             const float s = (i + 0.5f) / 40, t = (j + 0.5f) / 40;
             const glm::dvec3 p0(2.0 * s - 1.0, 0.0, 2.0 * t - 1.0);
-            const float want =
-                1.0f - stroke_opacity(p, stroke_noise(c.k, s, t, 1), edge_mask(edge, s, t, p.stroke_fullness));
+            const float want = 1.0f - stroke_opacity(p, stroke_noise(c.k, s, t, 1),
+                                                     edge_mask(edge, s, t, p.stroke_fullness));
             const float got = rays.transmittance(p0, up, ShadowMode::kTransmissive,
                                                  std::numeric_limits<float>::infinity(), &up);
             EXPECT_NEAR(got, want, 2e-3f) << s << ", " << t;
@@ -148,9 +148,9 @@ TEST(Rays, LightThroughStackedCardsIsTheProductAndOpaqueSurfacesBlock) {
                                   edge_mask(edge, s, t, p.stroke_fullness));
         };
         const float want = (1 - op(a)) * (1 - op(b));
-        EXPECT_NEAR(rays.transmittance({2.0 * s - 1.0, 0, 2.0 * t - 1.0}, up,
-                                       ShadowMode::kTransmissive),
-                    want, 2e-3f);
+        EXPECT_NEAR(
+            rays.transmittance({2.0 * s - 1.0, 0, 2.0 * t - 1.0}, up, ShadowMode::kTransmissive),
+            want, 2e-3f);
     }
     EXPECT_EQ(rays.transmittance({5, 0, 0}, up, ShadowMode::kTransmissive), 0.0f);
     EXPECT_TRUE(rays.occluded({5, 0, 0}, up));

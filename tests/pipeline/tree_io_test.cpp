@@ -4,11 +4,10 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
-#include <sstream>
-
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "test_util.h"
 
