@@ -306,6 +306,11 @@ std::vector<BuiltTree> build_trees(const SceneDesc& scene, bool bark) {
         b.tree = generate_tree(f.params, t.seed, o);
         b.family = t.family;
         b.position = t.position;
+        // Catmull-Clark rounds the trunk's base cube up off the ground: sink the tree by that
+        // much, so it stands on the ground (or the terrain) instead of hovering.
+        float base = 0.0f;
+        if (!b.tree.render.positions.empty()) base = bounds_of(b.tree.render.positions).min.y;
+        b.position.y -= std::max(0.0f, base) * t.scale;
         b.rotation = t.rotation;
         b.scale = t.scale;
         if (bark) {
@@ -475,9 +480,9 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
         glm::dvec3 to_eye = cam.eye - o;
         double dist = glm::length(to_eye);
         if (!(dist > 0)) return true;
-        bool seen =
-            !view_rays->intersect(o, glm::vec3(to_eye / dist), static_cast<float>(dist) * 0.999f, n)
-                 .hit;
+        // Any hit short of the eye hides it: an occlusion query, cheaper than the nearest hit.
+        bool seen = !view_rays->occluded(o, glm::vec3(to_eye / dist),
+                                         static_cast<float>(dist) * 0.999f, n);
         if (!seen) ++view_culled;
         return seen;
     };

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <glm/geometric.hpp>
 #include <map>
 
@@ -134,6 +136,22 @@ TEST(Branches, AddingBranchesLeavesTheOthersUnchanged) {
     for (const auto& [key, centers] : before) {
         ASSERT_TRUE(after.count(key)) << "branch disappeared";
         EXPECT_EQ(after[key], centers);
+    }
+}
+
+// The second level grows where the preset asks for it: twigs on the oak's and the willow's
+// branches, none when turned off.
+TEST(Branches, SecondLevelGrowsTwigs) {
+    for (const char* name : {"oak", "willow"}) {
+        TreeParams p = test::preset(name);
+        ASSERT_TRUE(p.twigs.enabled) << name;
+        auto count = [](const Tree& t) {
+            return std::count_if(t.branches.begin(), t.branches.end(),
+                                 [](const BranchInfo& b) { return b.level == 2; });
+        };
+        EXPECT_GT(count(generate_tree(p, 4)), 5) << name;
+        p.twigs.enabled = false;
+        EXPECT_EQ(count(generate_tree(p, 4)), 0) << name;
     }
 }
 
