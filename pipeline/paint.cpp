@@ -902,8 +902,9 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                     int xa = x0, xb = x1;
                     if (!row_span(sp, sx, sy, txx, tyy, y, xa, xb)) continue;
                     shade_stroke_row(row, y, xa, xb - xa + 1, al, rr, gg, bb, ins);
-                    for (int c = 0; c <= xb - xa; ++c) {
-                        fragments += static_cast<uint64_t>(ins[c]);
+                    const int len = xb - xa + 1;
+                    for (int c = 0; c < len; ++c) fragments += static_cast<uint64_t>(ins[c]);
+                    for (int c = 0; c < len; ++c) {
                         const float a = al[c];
                         if (!(a > 0.0f)) continue;
                         const size_t pi = static_cast<size_t>(y) * cam.width + xa + c;

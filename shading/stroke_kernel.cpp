@@ -198,6 +198,7 @@ void ShadeStrokeRow(const StrokeRow& row, int y, int x0, int count, float* alpha
         if (hn::AllFalse(d, hn::Gt(a, hn::Zero(d)))) {  // nothing shows: no colour needed
             for (size_t l = 0; l < left; ++l) {
                 alpha_out[base + l] = 0.0f;
+                r_out[base + l] = g_out[base + l] = b_out[base + l] = 0.0f;
                 inside_out[base + l] = ins[l];
             }
             continue;
