@@ -123,7 +123,13 @@ void write_frame(const fs::path& path, const Frame& f) {
         spec = OIIO::ImageSpec(f.width, f.height, nc, OIIO::TypeDesc::HALF);
         spec.channelnames = names;
         spec.alpha_channel = 3;
-        if (f.has_aovs) spec.z_channel = 4;
+        if (f.has_aovs) {
+            spec.z_channel = 4;
+            // Depth and ids in float: half holds whole numbers exactly only to 2048 and
+            // overflows past 65504 (surface strokes' ids are 65536 + their material).
+            const OIIO::TypeDesc h = OIIO::TypeDesc::HALF, f32 = OIIO::TypeDesc::FLOAT;
+            spec.channelformats = {h, h, h, h, f32, f32, h, h};
+        }
         spec.attribute("compression", "zip");
         linear.resize(n * nc);
         for (size_t i = 0; i < n; ++i) {

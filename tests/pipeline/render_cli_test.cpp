@@ -31,7 +31,7 @@ TEST(RenderCli, WritesPngTiffAndExrWithAovs) {
     auto in = OIIO::ImageInput::open((dir / "a.exr").string());
     ASSERT_TRUE(in);
     const auto& spec = in->spec();
-    EXPECT_EQ(spec.format, OIIO::TypeDesc::HALF);
+    EXPECT_EQ(spec.channelformat(0), OIIO::TypeDesc::HALF);  // colour in half float
     EXPECT_EQ(spec.nchannels, 8);
     for (const char* c : {"R", "G", "B", "A", "Z", "object_id", "stroke_alpha", "lightness"})
         EXPECT_GE(spec.channelindex(c), 0) << c;
@@ -44,6 +44,25 @@ TEST(RenderCli, WritesPngTiffAndExrWithAovs) {
         tree += px[i + id] == 1.0f;
     }
     EXPECT_GT(tree, 1000u);
+    ASSERT_EQ(spec.channelformats.size(), 8u);
+    EXPECT_EQ(spec.channelformat(id), OIIO::TypeDesc::FLOAT);
+    EXPECT_EQ(spec.channelformat(spec.channelindex("Z")), OIIO::TypeDesc::FLOAT);
+    // A landscape: surface strokes' ids (65536 + material) survive exactly, no Inf.
+    auto land = run_pleinair("render windmill-hills --set /camera/width=64 --set /camera/height=36 "
+                             "--aovs -o " + (dir / "l.exr").string());
+    ASSERT_EQ(land.exit_code, 0) << land.err;
+    auto lin = OIIO::ImageInput::open((dir / "l.exr").string());
+    ASSERT_TRUE(lin);
+    const auto& ls = lin->spec();
+    std::vector<float> lp(size_t(ls.width) * ls.height * ls.nchannels);
+    ASSERT_TRUE(lin->read_image(0, 0, 0, ls.nchannels, OIIO::TypeDesc::FLOAT, lp.data()));
+    size_t ground = 0;
+    for (size_t i = 0; i < lp.size(); i += ls.nchannels) {
+        for (int c = 0; c < ls.nchannels; ++c) ASSERT_TRUE(std::isfinite(lp[i + c]));
+        const float oid = lp[i + ls.channelindex("object_id")];
+        ground += oid == 65536.0f || oid == 65537.0f;  // grass or earth
+    }
+    EXPECT_GT(ground, 100u);
     auto png_in = OIIO::ImageInput::open((dir / "a.png").string());
     ASSERT_TRUE(png_in);
     EXPECT_EQ(png_in->spec().format, OIIO::TypeDesc::UINT8);
