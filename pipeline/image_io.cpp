@@ -6,6 +6,7 @@
 #include <OpenImageIO/imageio.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -164,10 +165,14 @@ void write_frame(const fs::path& path, const Frame& f) {
     if (ext != ".exr") spec.attribute("oiio:ColorSpace", "sRGB");
     spec.attribute("Software", "pleinair");
 
-    // The temporary keeps the extension so OpenImageIO picks the same format.
+    // The temporary keeps the extension so OpenImageIO picks the same format, and carries the
+    // process id so two renders to the same target never write into one temporary.
     fs::path tmp = path;
     std::string tmp_name = ".";
-    tmp_name.append(path.stem().string()).append(".partial").append(path.extension().string());
+    tmp_name.append(path.stem().string())
+        .append(".partial-")
+        .append(std::to_string(::getpid()))
+        .append(path.extension().string());
     tmp.replace_filename(tmp_name);
     auto out = OIIO::ImageOutput::create(tmp.string());
     bool ok =
