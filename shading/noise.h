@@ -123,18 +123,35 @@ inline float noise(float x, float y, float z) {
 }
 
 // Octaves at doubling frequency and halving amplitude, normalised back to 0..1. Each octave is
-// shifted so lattice points of different octaves do not line up. octaves <= 1 is plain noise.
-inline float fractal_noise(float x, float y, int octaves) {
-    if (octaves <= 1) return noise(x, y);
+// shifted so lattice points of different octaves do not line up. `octave(f, i)` is the signed
+// noise of octave i at frequency f.
+template <class Octave>
+inline float fractal_sum(int octaves, Octave&& octave) {
     float sum = 0.0f, amp = 1.0f, norm = 0.0f, f = 1.0f;
     for (int i = 0; i < octaves; ++i) {
-        sum += amp * signed_noise(x * f + 17.17f * i, y * f + 31.31f * i);
+        sum += amp * octave(f, static_cast<float>(i));
         norm += amp;
         amp *= 0.5f;
         f *= 2.0f;
     }
     float n = 0.5f + 0.5f * sum / norm;
     return n > 0.0f ? (n < 1.0f ? n : 1.0f) : 0.0f;
+}
+
+// octaves <= 1 is plain noise.
+inline float fractal_noise(float x, float y, int octaves) {
+    if (octaves <= 1) return noise(x, y);
+    return fractal_sum(octaves, [&](float f, float i) {
+        return signed_noise(x * f + 17.17f * i, y * f + 31.31f * i);
+    });
+}
+
+// The same over 3D noise (solid textures, displacement).
+inline float fractal_noise(float x, float y, float z, int octaves) {
+    if (octaves <= 1) return noise(x, y, z);
+    return fractal_sum(octaves, [&](float f, float i) {
+        return signed_noise(x * f + 17.17f * i, y * f + 31.31f * i, z * f + 43.43f * i);
+    });
 }
 
 }  // namespace pleinair

@@ -130,6 +130,21 @@ TEST(Noise, OctavesAddDetailAndOneOctaveIsPlainNoise) {
         return small / large;
     };
     EXPECT_GT(roughness(4), 1.3 * roughness(1));
+    // The 3D form: plain noise at one octave, in 0..1, rougher with more.
+    EXPECT_EQ(fractal_noise(1.3f, 2.7f, 0.4f, 1), noise(1.3f, 2.7f, 0.4f));
+    auto roughness3 = [](int octaves) {
+        double small = 0, large = 0;
+        for (int i = 0; i < 4000; ++i) {
+            float x = 0.05f * i;
+            float n = fractal_noise(x, 0.3f, 0.7f, octaves);
+            EXPECT_GE(n, 0.0f);
+            EXPECT_LE(n, 1.0f);
+            small += std::abs(fractal_noise(x + 0.05f, 0.3f, 0.7f, octaves) - n);
+            large += std::abs(fractal_noise(x + 1.5f, 0.3f, 0.7f, octaves) - n);
+        }
+        return small / large;
+    };
+    EXPECT_GT(roughness3(4), 1.3 * roughness3(1));
 }
 
 }  // namespace
