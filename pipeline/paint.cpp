@@ -959,7 +959,9 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
     for (uint64_t f : tile_fragments) rep.fragments += f;
     if (plan.aovs)
         for (float& d : frame.depth)
-            if (!std::isfinite(d)) d = 0.0f;  // background: no depth (EXR readers expect finite)
+            // Background: as far as a float goes (finite, as EXR readers expect, and sorting
+            // behind everything, unlike 0, which reads as nearest).
+            if (!std::isfinite(d)) d = std::numeric_limits<float>::max();
     rep.passes.push_back({"paint", true, "strokes back to front, tiles in parallel", ms_since(t0),
                           std::to_string(rep.fragments) + " fragments"});
     return frame;

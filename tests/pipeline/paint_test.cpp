@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <glm/geometric.hpp>
 
 #include "pipeline/image_io.h"
@@ -71,7 +72,10 @@ TEST(Paint, StrokesCoverTheTreesAndAovsNameThem) {
         birch += f.object_id[i] == 2.0f;
         if (f.object_id[i] > 0) {
             EXPECT_GT(f.depth[i], 0.0f);
+            EXPECT_LT(f.depth[i], 1e4f);
             EXPECT_GT(f.alpha[i], 0.5f);
+        } else if (f.alpha[i] == 0.0f) {
+            EXPECT_EQ(f.depth[i], std::numeric_limits<float>::max());  // background: farthest
         }
         EXPECT_NEAR(f.rgba[4 * i + 3], 1.0f, 1e-5f);  // opaque over the background
     }
