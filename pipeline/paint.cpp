@@ -116,10 +116,6 @@ bool has_atmosphere_effect(const StrokeShaderParams& p) {
            p.dist_value_max < 1;
 }
 
-float stroke_px(const Camera& cam, const RenderSettings& r, double world, double z) {
-    return stroke_screen_px(cam, r, world, z);
-}
-
 struct SpriteInput {
     glm::dvec3 world;
     glm::vec3 normal;   // world, unit
@@ -145,8 +141,8 @@ bool make_sprite(const SceneDesc& scene, const FramePlan& plan, const SpriteMate
     if (!c.in_front) return false;
     double z = c.depth;
     float jitter = 1.0f + p.size_jitter * (2.0f * label_hash(in.label, 1) - 1.0f);
-    float w = stroke_px(cam, scene.render, in.width * jitter, z);
-    float l = stroke_px(cam, scene.render, in.length * jitter, z);
+    float w = stroke_screen_px(cam, scene.render, in.width * jitter, z);
+    float l = stroke_screen_px(cam, scene.render, in.length * jitter, z);
     float opacity = 1;
     if (in.surface) {
         const SurfaceParticles& S = *in.surface;
@@ -481,8 +477,8 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
         double dist = glm::length(to_eye);
         if (!(dist > 0)) return true;
         // Any hit short of the eye hides it: an occlusion query, cheaper than the nearest hit.
-        bool seen = !view_rays->occluded(o, glm::vec3(to_eye / dist),
-                                         static_cast<float>(dist) * 0.999f, n);
+        bool seen =
+            !view_rays->occluded(o, glm::vec3(to_eye / dist), static_cast<float>(dist) * 0.999f, n);
         if (!seen) ++view_culled;
         return seen;
     };
