@@ -37,11 +37,19 @@ HWY_INLINE hn::Vec<DI> Cell(D d, DI di, V x, V& frac) {
     return hn::And(i, hn::Set(di, 255));
 }
 
-// noise_detail::kGrad2X/Y[h & 7] by selects instead of gathers (the same -1, 0 and 1):
+// noise_detail::kGrad2X/Y[h & 7] by a permute, or by selects instead of gathers (the same
+// -1, 0 and 1):
 // x: -1 for odd h, 1 for even, 0 for h >= 6; y: -1 for h in {2, 3, 7}, 0 for h in {4, 5}.
 template <class D, class DI, class V = hn::Vec<D>>
 HWY_INLINE V Grad2(D d, DI di, hn::Vec<DI> h, V x, V y) {
     auto k = hn::And(h, hn::Set(di, 7));
+    if constexpr (hn::MaxLanes(D()) == 8) {
+        // Eight lanes hold the eight gradients: one in-register permute per axis.
+        const auto at = hn::IndicesFromVec(d, k);
+        const V gx = hn::TableLookupLanes(hn::LoadU(d, noise_detail::kGrad2X), at);
+        const V gy = hn::TableLookupLanes(hn::LoadU(d, noise_detail::kGrad2Y), at);
+        return hn::Add(hn::Mul(gx, x), hn::Mul(gy, y));
+    }
     const V one = hn::Set(d, 1.0f), minus = hn::Set(d, -1.0f);
     auto odd = hn::RebindMask(d, hn::Eq(hn::And(k, hn::Set(di, 1)), hn::Set(di, 1)));
     auto ge6 = hn::RebindMask(d, hn::Gt(k, hn::Set(di, 5)));
@@ -103,6 +111,30 @@ V FractalNoise(D d, V x, V y, int octaves) {
     }
     return Clamp01(d, hn::Add(half, hn::Div(hn::Mul(half, sum), hn::Set(d, norm))));
 }
+
+// Lookups in a 16-entry ramp table: in-register permutes where a vector holds at least eight
+// lanes (one register of 16, or two of 8 and a select), a gather otherwise.
+template <class D>
+struct RampIndex {
+    static_assert(StrokeRamp::kSize == 16, "the permutes below cover 16 entries");
+    using DI = hn::RebindToSigned<D>;
+    D d;
+    hn::Vec<DI> idx;
+    RampIndex(D d_, hn::Vec<DI> i) : d(d_), idx(i) {}
+    hn::Vec<D> lookup(const float* table) const {
+        const DI di;
+        if constexpr (hn::MaxLanes(D()) >= 16) {
+            return hn::TableLookupLanes(hn::LoadU(d, table), hn::IndicesFromVec(d, idx));
+        } else if constexpr (hn::MaxLanes(D()) == 8) {
+            const auto lane = hn::IndicesFromVec(d, hn::And(idx, hn::Set(di, 7)));
+            const auto lo = hn::TableLookupLanes(hn::LoadU(d, table), lane);
+            const auto hi = hn::TableLookupLanes(hn::LoadU(d, table + 8), lane);
+            return hn::IfThenElse(hn::RebindMask(d, hn::Gt(idx, hn::Set(di, 7))), hi, lo);
+        } else {
+            return hn::GatherIndex(d, table, idx);
+        }
+    }
+};
 
 void ShadeStrokeRow(const StrokeRow& row, int y, int x0, int count, float* alpha_out, float* r_out,
                     float* g_out, float* b_out, int* inside_out) {
@@ -214,24 +246,19 @@ void ShadeStrokeRow(const StrokeRow& row, int y, int x0, int count, float* alpha
         const StrokeRamp& ramp = *row.ramp;
         V cr, cg, cb;
         if (!(k.sub_amt > 0.0f)) {
-            const Color& c = ramp.c[StrokeRamp::kSize / 2];
+            const Color c = ramp_color(ramp, 0.5f);
             cr = hn::Set(d, c.x), cg = hn::Set(d, c.y), cb = hn::Set(d, c.z);
         } else {
             V nx = hn::Add(hn::Mul(s, hn::Set(d, k.sub_frequ)), hn::Set(d, k.offset_t));
             V ny = hn::Add(hn::Mul(t, hn::Set(d, k.sub_frequ)), hn::Set(d, k.offset_s));
             V xr = hn::Mul(FractalNoise(d, nx, ny, 1),
                            hn::Set(d, static_cast<float>(StrokeRamp::kSize)));
-            auto i = hn::ConvertTo(di, xr);
+            auto i = hn::Min(hn::ConvertTo(di, xr), hn::Set(di, StrokeRamp::kSize - 1));
             V f = hn::Sub(xr, hn::ConvertTo(d, i));
-            const float* rgb = &ramp.c[0].x;  // Color is three packed floats
-            auto i3 = hn::Mul(i, hn::Set(di, 3));
-            auto j3 = hn::Add(i3, hn::Set(di, 3));
-            auto lerp = [&](int ch) {
-                V c0 = hn::GatherIndex(d, rgb, hn::Add(i3, hn::Set(di, ch)));
-                V c1 = hn::GatherIndex(d, rgb, hn::Add(j3, hn::Set(di, ch)));
-                return hn::Add(c0, hn::Mul(hn::Sub(c1, c0), f));
-            };
-            cr = lerp(0), cg = lerp(1), cb = lerp(2);
+            const RampIndex<decltype(d)> at(d, i);
+            cr = hn::Add(at.lookup(ramp.base[0]), hn::Mul(at.lookup(ramp.step[0]), f));
+            cg = hn::Add(at.lookup(ramp.base[1]), hn::Mul(at.lookup(ramp.step[1]), f));
+            cb = hn::Add(at.lookup(ramp.base[2]), hn::Mul(at.lookup(ramp.step[2]), f));
         }
         HWY_ALIGN float out[4][kMaxLanes];
         hn::Store(a, d, out[0]);

@@ -245,29 +245,44 @@ inline Color stroke_color(const StrokeConstants& k, const Palette& palette, floa
 // A stroke's final colours tabulated against its sub-stroke noise value: lightness varies only
 // through that noise inside a sprite, and tint and atmosphere are constant over it, so
 // kSize + 1 colours per sprite replace the palette, tint and atmosphere per fragment. The
-// "palette_lut" accuracy setting.
+// "palette_lut" accuracy setting. Stored per channel as each interval's start and step, so the
+// vector kernel looks both up with in-register permutes (16 entries fit two 8-lane registers)
+// and computes exactly the scalar's c0 + (c1 - c0) * f.
 struct StrokeRamp {
-    static constexpr int kSize = 32;
-    std::array<Color, kSize + 2> c{};
+    static constexpr int kSize = 16;
+    float base[3][kSize]{};  // colour at the start of interval i, per channel
+    float step[3][kSize]{};  // colour at its end minus that
 };
 
 inline StrokeRamp make_ramp(const StrokeConstants& k, const Palette& palette) {
     StrokeRamp r;
+    Color prev{};
     for (int i = 0; i <= StrokeRamp::kSize; ++i) {
         float n = static_cast<float>(i) / StrokeRamp::kSize;
-        r.c[i] = finish_color(k, palette_lookup(palette, k.lightness + k.sub_amt * (n - 0.5f)));
+        Color c = finish_color(k, palette_lookup(palette, k.lightness + k.sub_amt * (n - 0.5f)));
+        if (i > 0)
+            for (int ch = 0; ch < 3; ++ch) {
+                r.base[ch][i - 1] = prev[ch];
+                r.step[ch][i - 1] = c[ch] - prev[ch];
+            }
+        prev = c;
     }
-    r.c[StrokeRamp::kSize + 1] = r.c[StrokeRamp::kSize];
     return r;
+}
+
+// The ramp's colour at noise value n in 0..1 (1 is the end of the last interval).
+inline Color ramp_color(const StrokeRamp& r, float n) {
+    float x = n * StrokeRamp::kSize;
+    int i = std::min(static_cast<int>(x), StrokeRamp::kSize - 1);
+    float f = x - static_cast<float>(i);
+    return {r.base[0][i] + r.step[0][i] * f, r.base[1][i] + r.step[1][i] * f,
+            r.base[2][i] + r.step[2][i] * f};
 }
 
 // stroke_color through the ramp.
 inline Color stroke_color(const StrokeConstants& k, const StrokeRamp& r, float s, float t) {
-    if (!(k.sub_amt > 0.0f)) return r.c[StrokeRamp::kSize / 2];
-    float n = noise(s * k.sub_frequ + k.offset_t, t * k.sub_frequ + k.offset_s);
-    float x = n * StrokeRamp::kSize;
-    int i = static_cast<int>(x);
-    return mix(r.c[i], r.c[i + 1], x - static_cast<float>(i));
+    if (!(k.sub_amt > 0.0f)) return ramp_color(r, 0.5f);
+    return ramp_color(r, noise(s * k.sub_frequ + k.offset_t, t * k.sub_frequ + k.offset_s));
 }
 
 }  // namespace pleinair

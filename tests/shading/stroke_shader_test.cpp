@@ -162,7 +162,10 @@ TEST(StrokeShader, ColourRampMatchesTheExactColour) {
             worst =
                 std::max(worst, glm::length(stroke_color(k, r, s, t) - stroke_color(k, pal, s, t)));
         }
-        EXPECT_LT(worst, 5e-3f) << ndl;
+        // 16 intervals over the noise's swing: the error is largest inside a cut-off band,
+        // where two splines mix, and stays under 1e-2 in linear RGB (about two 8-bit sRGB
+        // levels at mid-tones; the image-level cost is in BENCHMARKS.md's accuracy table).
+        EXPECT_LT(worst, 1e-2f) << ndl;
     }
     // No sub-stroke variation: the ramp's middle colour is the exact one everywhere.
     p.sub_stroke_amt = 0;
