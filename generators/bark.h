@@ -1,5 +1,5 @@
-// Bark stroke particles: the trunk and branches painted as strokes laid over the limbs' surface,
-// each oriented along its limb, instead of a flat-shaded mesh.
+// Bark stroke particles: the trunk and branches painted as strokes laid on the render mesh's
+// surface, each oriented along its limb, instead of a flat-shaded mesh.
 #pragma once
 
 #include <cstdint>
@@ -11,11 +11,12 @@
 namespace pleinair {
 
 struct BarkParticles {
-    std::vector<glm::vec3> position;  // tree-local, on the limb's surface
-    std::vector<glm::vec3> normal;    // unit, outward from the limb's axis
-    std::vector<glm::vec3> tangent;   // unit, along the limb towards its tip
+    std::vector<glm::vec3> position;  // tree-local, on the render mesh's surface
+    std::vector<glm::vec3> normal;    // unit, the surface's (smooth) normal there
+    std::vector<glm::vec3> tangent;   // unit, in the surface: the limb's axis projected into it
     std::vector<float> radius;        // of the limb where the stroke sits (tree units)
     std::vector<float> label;         // in (0, 1): seeds the stroke noise
+    std::vector<uint32_t> limb;       // BranchInfo::id of the limb under the stroke
     std::vector<uint32_t> tree_id;
     size_t size() const { return position.size(); }
 };
@@ -23,13 +24,15 @@ struct BarkParticles {
 struct BarkOptions {
     float stroke_length = 0.6f;  // tree units
     float stroke_width = 0.25f;  // tree units
-    float coverage = 2.5f;       // strokes' total area over the limb's lateral area
-    float surface_scale = 0.9f;  // Catmull-Clark pulls the surface inside the control rings
+    float coverage = 2.5f;       // strokes' total area over the surface's area
     int max_level = 2;           // limbs deeper than this get no strokes
     float min_radius = 0.0f;     // thinner limb segments get no strokes (tree units)
 };
 
-// Pure: strokes per limb segment drawn from streams keyed by (seed, limb key, segment), so a
+// Pure: strokes are scattered uniformly over each render face of the limbs that qualify, as
+// many as coverage asks (a fractional count is rounded by a draw), except on the trunk below
+// its planting depth. Each limb's control face
+// draws from its own stream keyed by (seed, limb key, the face's place in the limb), so a
 // limb's strokes never depend on other limbs.
 BarkParticles emit_bark(const Tree& tree, const BarkOptions& options, uint64_t seed);
 

@@ -25,6 +25,12 @@ struct BranchInfo {
     float length = 0;       // along the skeleton
     std::vector<glm::vec3> ring_centers;
     std::vector<float> ring_radii;  // non-increasing from base to tip
+    // The control-mesh faces this limb owns, in a stable order (its side faces segment by
+    // segment, then its cap; the trunk also owns its base), and the segment each belongs to
+    // (rings s and s + 1). Every control face is owned by exactly one limb. Render face
+    // f * 4^render_levels + k, for k < 4^render_levels, is a piece of control face f.
+    std::vector<uint32_t> faces;
+    std::vector<uint32_t> face_segments;
 };
 
 struct TreeOptions {
@@ -39,10 +45,15 @@ struct Tree {
     glm::dvec3 origin{0, 0, 0};  // add to tree-local positions for world space (in double)
     QuadMesh control;            // trunk and branches as grown by extrusion
     QuadMesh render;             // control after Catmull-Clark
+    int render_levels = 0;       // rounds of Catmull-Clark from control to render
     QuadMesh lod;                // trunk and first-level branches, fewer subdivision levels
     LeafParticles leaves;
     std::vector<BranchInfo> branches;
     glm::vec3 center{0.0f};  // centre locator, tree-local
+    // Height above the trunk's base ring at which the render mesh reaches nine tenths of the
+    // trunk's width: below it is the cap Catmull-Clark rounds into a dome. Scenes plant the
+    // tree this deep, and no bark stroke is painted below it.
+    float planting_depth = 0;
 };
 
 class InvalidParams : public std::invalid_argument {

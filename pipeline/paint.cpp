@@ -302,11 +302,9 @@ std::vector<BuiltTree> build_trees(const SceneDesc& scene, bool bark) {
         b.tree = generate_tree(f.params, t.seed, o);
         b.family = t.family;
         b.position = t.position;
-        // Catmull-Clark rounds the trunk's base cube up off the ground: sink the tree by that
-        // much, so it stands on the ground (or the terrain) instead of hovering.
-        float base = 0.0f;
-        if (!b.tree.render.positions.empty()) base = bounds_of(b.tree.render.positions).min.y;
-        b.position.y -= std::max(0.0f, base) * t.scale;
+        // Catmull-Clark rounds the trunk's base into a dome: plant the tree deep enough that
+        // the ground meets the trunk at its full width.
+        b.position.y -= b.tree.planting_depth * t.scale;
         b.rotation = t.rotation;
         b.scale = t.scale;
         if (bark) {
@@ -833,7 +831,7 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
             const StrokeShaderParams& p = *m.shader;
             // The sprite's colour ramp (palette, tint and atmosphere folded in), when the
             // settings allow the table: built here, per tile the sprite touches, so no frame-
-            // sized array of ramps is ever held (33 colours a sprite would outweigh the sprite).
+            // sized array of ramps is ever held (17 colours a sprite would outweigh the sprite).
             StrokeRamp local_ramp;
             const StrokeRamp* ramp = nullptr;
             // Light varying over the sprite moves its lightness per fragment: no ramp then.

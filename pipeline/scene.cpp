@@ -175,14 +175,14 @@ void visit_scene(SceneDesc& s, V& v) {
         v.integer("octaves", r.octaves, {1, 8}, "Octaves of the stroke noise.");
         v.boolean("palette_lut", r.palette_lut,
                   "Tabulate each sprite's colours (palette, tint, atmosphere) against its "
-                  "sub-stroke noise at 33 points instead of evaluating them per fragment.");
+                  "sub-stroke noise at 17 points instead of evaluating them per fragment.");
         v.boolean("filter_strokes", r.filter_strokes,
                   "At 1 sample per pixel, widen each stroke's feather by the pixel's footprint "
                   "in noise space (RenderMan's filterwidth) against aliasing.");
         v.boolean("edge_lut", r.edge_lut,
                   "Read the stroke edge mask from a 256-entry table instead of sin and pow.");
         v.real("bark_coverage", r.bark_coverage, {0, 100}, "",
-               "Bark strokes' total area over the limbs' lateral area.");
+               "Bark strokes' total area over the area of the limbs' render mesh.");
         v.text("shadows", r.shadows,
                "How leaf strokes shadow: \"transmissive\" (light dimmed by every stroke crossed) "
                "or \"threshold\" (a stroke blocks where its mask is over one half).");

@@ -33,6 +33,49 @@ void expect_valid(const Tree& t, const std::string& what) {
         ASSERT_TRUE(std::isfinite(t.leaves.normal[i].x)) << what;
     }
     EXPECT_TRUE(std::isfinite(t.center.x + t.center.y + t.center.z)) << what;
+    // Every control face is owned by exactly one limb, and the render mesh is the control
+    // mesh's faces each cut into 4^render_levels pieces.
+    std::vector<int> owners(t.control.quads.size(), 0);
+    for (const BranchInfo& b : t.branches) {
+        ASSERT_EQ(b.faces.size(), b.face_segments.size()) << what;
+        for (size_t k = 0; k < b.faces.size(); ++k) {
+            ASSERT_LT(b.faces[k], owners.size()) << what;
+            ++owners[b.faces[k]];
+            ASSERT_LT(b.face_segments[k] + 1, b.ring_centers.size()) << what;
+        }
+    }
+    EXPECT_EQ(std::count(owners.begin(), owners.end(), 1), static_cast<long>(owners.size()))
+        << what;
+    EXPECT_EQ(t.render.quads.size(), t.control.quads.size() << (2 * t.render_levels)) << what;
+}
+
+// A limb's side face lies between the two rings of its segment: the centroid projects onto
+// the segment's axis near its middle, at about the ring radius from it (a face given to the
+// wrong segment or limb would project outside it).
+TEST(Tree, LimbsOwnTheirSideFacesSegmentBySegment) {
+    Tree t = generate_tree(test::preset("oak"), 7);
+    size_t checked = 0;
+    for (const BranchInfo& b : t.branches) {
+        // Sides first, then the cap (and, for the trunk, its base).
+        const size_t sides = b.faces.size() - (b.id == 0 ? 2 : 1);
+        for (size_t k = 0; k < sides; ++k) {
+            const glm::uvec4 q = t.control.quads[b.faces[k]];
+            glm::vec3 c(0.0f);
+            for (int j = 0; j < 4; ++j) c += 0.25f * t.control.positions[q[j]];
+            const uint32_t s = b.face_segments[k];
+            const glm::vec3 c0 = b.ring_centers[s], axis = b.ring_centers[s + 1] - c0;
+            const float len = glm::length(axis);
+            const float along = glm::dot(c - c0, axis / len) / len;
+            const float dist = glm::length(c - c0 - axis * along);
+            EXPECT_GT(along, 0.2f) << b.id << " " << k;
+            EXPECT_LT(along, 0.8f) << b.id << " " << k;
+            // Ring 0 of a branch is the parent's face, a rectangle: up to a few radii across.
+            EXPECT_LT(dist, 3.0f * std::max(b.ring_radii[s], b.ring_radii[s + 1])) << b.id;
+            EXPECT_GT(dist, 0.3f * b.ring_radii[s + 1]) << b.id << " " << k;
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, 200u);
 }
 
 TEST(Tree, EveryPresetGivesClosedManifoldMeshes) {
