@@ -3,6 +3,7 @@
 #include "pipeline/paint.h"
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
@@ -263,6 +264,13 @@ QuadMesh placed_limbs(const BuiltTree& b) {
 
 std::vector<StrokeCaster> leaf_casters(const SceneDesc& scene, const BuiltTree& b,
                                        const glm::vec3& sun) {
+    std::vector<StrokeCaster> out(b.tree.leaves.size());
+    leaf_casters(scene, b, sun, out.data());
+    return out;
+}
+
+void leaf_casters(const SceneDesc& scene, const BuiltTree& b, const glm::vec3& sun,
+                  StrokeCaster* out) {
     const TreePlacement pl = placement(b);
     const StrokeShaderParams& p = scene.families[b.family].leaf_shader;
     const LeafParticles& L = b.tree.leaves;
@@ -270,10 +278,8 @@ std::vector<StrokeCaster> leaf_casters(const SceneDesc& scene, const BuiltTree& 
     // A frame perpendicular to the sun; each card turned by its stroke's angle jitter.
     const glm::vec3 ref = std::abs(sun.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
     const glm::vec3 a0 = glm::normalize(glm::cross(ref, sun)), b0 = glm::cross(sun, a0);
-    std::vector<StrokeCaster> out;
-    out.reserve(L.size());
     for (size_t j = 0; j < L.size(); ++j) {
-        StrokeCaster c;
+        StrokeCaster& c = out[j];
         c.center = pl.place(L.position[j]);
         const float jitter = 1.0f + p.size_jitter * (2.0f * label_hash(L.label[j], 1) - 1.0f);
         const double ang = (label_hash(L.label[j], 2) - 0.5) * p.angle_jitter * M_PI / 180;
@@ -282,12 +288,11 @@ std::vector<StrokeCaster> leaf_casters(const SceneDesc& scene, const BuiltTree& 
         c.axis_t = -sa * a0 + ca * b0;
         c.half_w = static_cast<float>(0.5 * w * jitter);
         c.half_l = c.half_w * p.stroke_aspect;
-        c.k = stroke_constants(p, glm::dot(pl.turn(L.normal[j]), sun), L.center_distance[j],
-                               L.branch_distance[j], L.label[j], L.tree_id[j], 1.0f, 0.0f, 0.0f,
-                               false, false);
-        out.push_back(c);
+        c.noise = noise_of(stroke_constants(p, glm::dot(pl.turn(L.normal[j]), sun),
+                                            L.center_distance[j], L.branch_distance[j],
+                                            L.label[j], L.tree_id[j], 1.0f, 0.0f, 0.0f, false,
+                                            false));
     }
-    return out;
 }
 
 std::vector<BuiltTree> build_trees(const SceneDesc& scene, bool bark) {
@@ -409,7 +414,7 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
     // What each camera-scene geometry is painted with underneath: a material index, or -1 for
     // the terrain (its material varies over it).
     std::vector<int64_t> view_material;
-    if (plan.underpaint) {
+    auto build_view = [&] {
         view_rays = std::make_unique<RayScene>(anchor);
         if (land.has_terrain) view_rays->add_mesh(land.terrain_mesh), view_material.push_back(-1);
         if (land.has_water)
@@ -422,9 +427,8 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
             view_rays->add_mesh(placed_mesh(i), placements[i].position),
                 view_material.push_back(static_cast<int64_t>(2 * trees[i].family + 1));
         view_rays->commit();
-        rep.view_scene = true;
-    }
-    if (plan.shadows) {
+    };
+    auto build_sun = [&] {
         sun_rays = std::make_unique<RayScene>(anchor);
         // Surfaces that grow grass and rock strokes cast shadows though the camera never sees
         // them (IV.7); water casts none.
@@ -432,19 +436,32 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
         for (const auto& r : land.rocks) sun_rays->add_mesh(r);
         for (size_t i = 0; i < trees.size(); ++i)
             sun_rays->add_mesh(placed_mesh(i), placements[i].position);
-        // Leaf strokes as cards facing the sun, one caster set per family's leaf shader.
+        // Leaf strokes as cards facing the sun, one caster set per family's leaf shader, each
+        // in tree order whatever the threads did.
         std::vector<std::vector<StrokeCaster>> casters(nf);
-        for (const BuiltTree& b : trees) {
-            std::vector<StrokeCaster> c = leaf_casters(scene, b, sun);
-            casters[b.family].insert(casters[b.family].end(), c.begin(), c.end());
+        std::vector<size_t> offset(trees.size());
+        for (size_t i = 0; i < trees.size(); ++i) {
+            offset[i] = casters[trees[i].family].size();
+            casters[trees[i].family].resize(offset[i] + trees[i].tree.leaves.size());
         }
+        tbb::parallel_for(size_t{0}, trees.size(), [&](size_t i) {
+            leaf_casters(scene, trees[i], sun, casters[trees[i].family].data() + offset[i]);
+        });
         for (size_t f = 0; f < nf; ++f)
             if (!casters[f].empty())
-                sun_rays->add_casters(std::move(casters[f]), scene.families[f].leaf_shader,
+                sun_rays->add_casters(casters[f], scene.families[f].leaf_shader,
                                       materials[2 * f].edge);
         sun_rays->commit();
-        rep.sun_scene = true;
-    }
+    };
+    // The two scenes share nothing: built side by side (Embree's builds are partly serial).
+    if (plan.underpaint && plan.shadows)
+        tbb::parallel_invoke(build_view, build_sun);
+    else if (plan.underpaint)
+        build_view();
+    else if (plan.shadows)
+        build_sun();
+    rep.view_scene = plan.underpaint;
+    rep.sun_scene = plan.shadows;
     if (plan.underpaint || plan.shadows)
         rep.passes.push_back(
             {"ray scenes", true, "Embree scenes the plan asks for", ms_since(t0),

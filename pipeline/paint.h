@@ -45,6 +45,9 @@ QuadMesh placed_limbs(const BuiltTree& tree);
 // strokes, with the same noise (IV.4.2).
 std::vector<StrokeCaster> leaf_casters(const SceneDesc& scene, const BuiltTree& tree,
                                        const glm::vec3& sun);
+// The same, written to out[0 .. tree.tree.leaves.size() - 1].
+void leaf_casters(const SceneDesc& scene, const BuiltTree& tree, const glm::vec3& sun,
+                  StrokeCaster* out);
 
 // Generates every tree of the scene (in parallel; the result does not depend on threads).
 // `bark` is false when the frame does not paint bark.

@@ -12,6 +12,8 @@
 #include <glm/geometric.hpp>
 #include <stdexcept>
 #include <string>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace pleinair {
 
@@ -29,10 +31,17 @@ float ray_epsilon(const glm::dvec3& p) {
 
 namespace {
 
+// A caster as the filter reads it: its card relative to the anchor, as Embree sees it.
+struct Card {
+    glm::vec3 center;
+    glm::vec3 axis_s, axis_t;
+    float half_w, half_l;
+    StrokeNoise noise;
+};
+
 // What the caster filter reads, per caster geometry.
 struct CasterSet {
-    std::vector<StrokeCaster> casters;
-    std::vector<glm::vec3> centers;  // relative to the anchor, as Embree sees them
+    std::vector<Card> cards;
     const StrokeShaderParams* shader = nullptr;
     const EdgeTable* edge = nullptr;
 };
@@ -58,11 +67,11 @@ constexpr uint64_t kOpaqueDepth = 10 * 65536;  // 2^-10: a thousandth of the lig
 // Opacity of caster `c` where the ray crosses its card.
 float caster_opacity(const CasterSet& set, uint32_t prim, const glm::vec3& org,
                      const glm::vec3& dir) {
-    const StrokeCaster& c = set.casters[prim];
+    const Card& c = set.cards[prim];
     const glm::vec3 n = glm::cross(c.axis_s, c.axis_t);
     const float dn = glm::dot(dir, n);
     if (std::abs(dn) < 1e-12f) return 0.0f;
-    const glm::vec3& center = set.centers[prim];
+    const glm::vec3& center = c.center;
     const float t = glm::dot(center - org, n) / dn;
     const glm::vec3 rel = org + dir * t - center;
     const float s = 0.5f + 0.5f * glm::dot(rel, c.axis_s) / c.half_w;
@@ -71,7 +80,7 @@ float caster_opacity(const CasterSet& set, uint32_t prim, const glm::vec3& org,
     const StrokeShaderParams& p = *set.shader;
     const float e = edge_mask(*set.edge, s, tt, p.stroke_fullness);
     if (e <= p.stroke_feather_min) return 0.0f;
-    return stroke_opacity(p, stroke_noise(c.k, s, tt, 1), e);
+    return stroke_opacity(p, stroke_noise(c.noise, s, tt, 1), e);
 }
 
 void caster_filter(const RTCFilterFunctionNArguments* args) {
@@ -181,8 +190,8 @@ uint32_t RayScene::add_mesh(const QuadMesh& mesh, const glm::dvec3& offset) {
     return id;
 }
 
-uint32_t RayScene::add_casters(std::vector<StrokeCaster> casters, const StrokeShaderParams& shader,
-                               const EdgeTable& edge) {
+uint32_t RayScene::add_casters(const std::vector<StrokeCaster>& casters,
+                               const StrokeShaderParams& shader, const EdgeTable& edge) {
     if (!impl_->casters) {
         impl_->casters = rtcNewScene(impl_->device);
         // Medium quality builds without spatial splits: fewer repeated filter calls.
@@ -191,28 +200,29 @@ uint32_t RayScene::add_casters(std::vector<StrokeCaster> casters, const StrokeSh
     auto set = std::make_unique<CasterSet>();
     set->shader = &shader;
     set->edge = &edge;
-    set->casters = std::move(casters);
-    const size_t n = set->casters.size();
-    set->centers.resize(n);
+    const size_t n = casters.size();
+    set->cards.resize(n);
     RTCGeometry g = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_QUAD);
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
         g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4 * n));
     auto* q = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
         g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), n));
-    for (size_t i = 0; i < n; ++i) {
-        const StrokeCaster& c = set->casters[i];
-        const glm::vec3 center(c.center - impl_->anchor);
-        set->centers[i] = center;
-        const glm::vec3 a = c.axis_s * c.half_w, b = c.axis_t * c.half_l;
-        const glm::vec3 corners[4] = {center - a - b, center + a - b, center + a + b,
-                                      center - a + b};
-        for (int k = 0; k < 4; ++k) {
-            v[12 * i + 3 * k] = corners[k].x;
-            v[12 * i + 3 * k + 1] = corners[k].y;
-            v[12 * i + 3 * k + 2] = corners[k].z;
-            q[4 * i + k] = static_cast<unsigned>(4 * i + k);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const auto& range) {
+        for (size_t i = range.begin(); i != range.end(); ++i) {
+            const StrokeCaster& c = casters[i];
+            const glm::vec3 center(c.center - impl_->anchor);
+            set->cards[i] = {center, c.axis_s, c.axis_t, c.half_w, c.half_l, c.noise};
+            const glm::vec3 a = c.axis_s * c.half_w, b = c.axis_t * c.half_l;
+            const glm::vec3 corners[4] = {center - a - b, center + a - b, center + a + b,
+                                          center - a + b};
+            for (int k = 0; k < 4; ++k) {
+                v[12 * i + 3 * k] = corners[k].x;
+                v[12 * i + 3 * k + 1] = corners[k].y;
+                v[12 * i + 3 * k + 2] = corners[k].z;
+                q[4 * i + k] = static_cast<unsigned>(4 * i + k);
+            }
         }
-    }
+    });
     rtcSetGeometryUserData(g, set.get());
     rtcSetGeometryOccludedFilterFunction(g, caster_filter);
     rtcCommitGeometry(g);

@@ -50,7 +50,7 @@ struct StrokeCaster {
     glm::vec3 axis_s{1, 0, 0};           // unit, across the stroke
     glm::vec3 axis_t{0, 1, 0};           // unit, along it; both perpendicular to the sun
     float half_w = 0.5f, half_l = 0.5f;  // world units
-    StrokeConstants k;                   // noise frequencies and offsets of the stroke
+    StrokeNoise noise;                   // noise frequencies and offsets of the stroke
 };
 
 // How a shadow ray treats stroke casters: the opacity of the first card decides (above one
@@ -68,8 +68,8 @@ class RayScene {
     uint32_t add_mesh(const QuadMesh& mesh, const glm::dvec3& offset = glm::dvec3(0.0));
     // Adds stroke casters, evaluated by an occlusion filter with the given stroke parameters
     // (which must outlive the scene). Returns the geometry id; primitive i is casters[i].
-    uint32_t add_casters(std::vector<StrokeCaster> casters, const StrokeShaderParams& shader,
-                         const EdgeTable& edge);
+    uint32_t add_casters(const std::vector<StrokeCaster>& casters,
+                         const StrokeShaderParams& shader, const EdgeTable& edge);
     // Builds the acceleration structure; call once after the last add.
     void commit();
     uint32_t mesh_count() const;

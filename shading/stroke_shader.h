@@ -222,6 +222,22 @@ inline float stroke_noise(const StrokeConstants& k, float s, float t, int octave
     return fractal_noise(s * k.frequ_s + k.offset_s, t * k.frequ_t + k.offset_t, octaves);
 }
 
+// What the stroke mask's noise reads of StrokeConstants, for whoever keeps many strokes around
+// (shadow casters) and needs no colour.
+struct StrokeNoise {
+    float frequ_s = 1, frequ_t = 1;
+    float offset_s = 0, offset_t = 0;
+};
+
+inline StrokeNoise noise_of(const StrokeConstants& k) {
+    return {k.frequ_s, k.frequ_t, k.offset_s, k.offset_t};
+}
+
+// stroke_noise of the StrokeConstants the key came from, bit for bit.
+inline float stroke_noise(const StrokeNoise& n, float s, float t, int octaves) {
+    return fractal_noise(s * n.frequ_s + n.offset_s, t * n.frequ_t + n.offset_t, octaves);
+}
+
 // Tint, then atmospheric perspective: what happens to a palette colour after the lookup.
 inline Color finish_color(const StrokeConstants& k, Color c) {
     c = c * k.tint_keep + k.tint;

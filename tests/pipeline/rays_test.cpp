@@ -93,7 +93,7 @@ StrokeCaster card(glm::dvec3 center, float label, const StrokeShaderParams& p) {
     c.axis_s = {1, 0, 0};
     c.axis_t = {0, 0, 1};
     c.half_w = c.half_l = 1.0f;
-    c.k = stroke_constants(p, 1.0f, 0.5f, 0.5f, label, 0, 1.0f, 0.0f, 0.0f, false, false);
+    c.noise = noise_of(stroke_constants(p, 1.0f, 0.5f, 0.5f, label, 0, 1.0f, 0.0f, 0.0f, false, false));
     return c;
 }
 
@@ -112,7 +112,7 @@ TEST(Rays, StrokeCastersShadowAsTheirMaskNotAsSquares) {
         for (int i = 0; i < 40; ++i) {
             const float s = (i + 0.5f) / 40, t = (j + 0.5f) / 40;
             const glm::dvec3 p0(2.0 * s - 1.0, 0.0, 2.0 * t - 1.0);
-            const float want = 1.0f - stroke_opacity(p, stroke_noise(c.k, s, t, 1),
+            const float want = 1.0f - stroke_opacity(p, stroke_noise(c.noise, s, t, 1),
                                                      edge_mask(edge, s, t, p.stroke_fullness));
             const float got = rays.transmittance(p0, up, ShadowMode::kTransmissive,
                                                  std::numeric_limits<float>::infinity(), &up);
@@ -144,7 +144,7 @@ TEST(Rays, LightThroughStackedCardsIsTheProductAndOpaqueSurfacesBlock) {
     for (float s : {0.3f, 0.5f, 0.62f}) {
         const float t = 0.45f;
         auto op = [&](const StrokeCaster& c) {
-            return stroke_opacity(p, stroke_noise(c.k, s, t, 1),
+            return stroke_opacity(p, stroke_noise(c.noise, s, t, 1),
                                   edge_mask(edge, s, t, p.stroke_fullness));
         };
         const float want = (1 - op(a)) * (1 - op(b));
