@@ -75,7 +75,8 @@ BarkParticles emit_bark(const Tree& tree, const BarkOptions& o, uint64_t seed) {
                 if (!std::isfinite(area)) continue;
                 const auto n = static_cast<size_t>(o.coverage * area / stroke_area + rand1(rng));
                 for (size_t i = 0; i < n; ++i) {
-                    const float u = static_cast<float>(rand1(rng)), v = static_cast<float>(rand1(rng));
+                    const float u = static_cast<float>(rand1(rng)),
+                                v = static_cast<float>(rand1(rng));
                     const float label = static_cast<float>(rand_range(rng, 1e-6, 1.0 - 1e-6));
                     const glm::vec3 p = bilinear(pa, pb, pc, pd, u, v);
                     // The trunk's domed base is below ground: no strokes there.

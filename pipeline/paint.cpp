@@ -289,9 +289,8 @@ void leaf_casters(const SceneDesc& scene, const BuiltTree& b, const glm::vec3& s
         c.half_w = static_cast<float>(0.5 * w * jitter);
         c.half_l = c.half_w * p.stroke_aspect;
         c.noise = noise_of(stroke_constants(p, glm::dot(pl.turn(L.normal[j]), sun),
-                                            L.center_distance[j], L.branch_distance[j],
-                                            L.label[j], L.tree_id[j], 1.0f, 0.0f, 0.0f, false,
-                                            false));
+                                            L.center_distance[j], L.branch_distance[j], L.label[j],
+                                            L.tree_id[j], 1.0f, 0.0f, 0.0f, false, false));
     }
 }
 
@@ -403,7 +402,6 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
     std::vector<TreePlacement> placements;
     placements.reserve(trees.size());
     for (const BuiltTree& b : trees) placements.push_back(placement(b));
-    auto placed_mesh = [&](size_t i) { return placed_limbs(trees[i]); };
 
     // Ray scenes, only as the plan asks: the camera's (underpainting and culling of sprites
     // behind the ground) and the sun's (shadows cast as brush strokes).
@@ -414,8 +412,19 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
     // What each camera-scene geometry is painted with underneath: a material index, or -1 for
     // the terrain (its material varies over it).
     std::vector<int64_t> view_material;
+    // Each tree's limbs are built once, in its own space, and placed in both scenes.
+    RayMeshes limbs;
+    auto limb_transform = [&](size_t i) {
+        const TreePlacement& pl = placements[i];
+        return glm::dmat3(glm::dvec3(pl.c, 0, -pl.s) * pl.scale, glm::dvec3(0, pl.scale, 0),
+                          glm::dvec3(pl.s, 0, pl.c) * pl.scale);
+    };
+    if (plan.underpaint || plan.shadows) {
+        for (const BuiltTree& b : trees) limbs.add(b.tree.render);
+        limbs.commit();
+    }
     auto build_view = [&] {
-        view_rays = std::make_unique<RayScene>(anchor);
+        view_rays = std::make_unique<RayScene>(anchor, &limbs);
         if (land.has_terrain) view_rays->add_mesh(land.terrain_mesh), view_material.push_back(-1);
         if (land.has_water)
             view_rays->add_mesh(land.water_mesh),
@@ -424,18 +433,20 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
             view_rays->add_mesh(land.rocks[i]),
                 view_material.push_back(static_cast<int64_t>(2 * nf + scene.rocks[i].material));
         for (size_t i = 0; i < trees.size(); ++i)
-            view_rays->add_mesh(placed_mesh(i), placements[i].position),
+            view_rays->add_instance(static_cast<uint32_t>(i), limb_transform(i),
+                                    placements[i].position),
                 view_material.push_back(static_cast<int64_t>(2 * trees[i].family + 1));
         view_rays->commit();
     };
     auto build_sun = [&] {
-        sun_rays = std::make_unique<RayScene>(anchor);
+        sun_rays = std::make_unique<RayScene>(anchor, &limbs);
         // Surfaces that grow grass and rock strokes cast shadows though the camera never sees
         // them (IV.7); water casts none.
         if (land.has_terrain) sun_rays->add_mesh(land.terrain_mesh);
         for (const auto& r : land.rocks) sun_rays->add_mesh(r);
         for (size_t i = 0; i < trees.size(); ++i)
-            sun_rays->add_mesh(placed_mesh(i), placements[i].position);
+            sun_rays->add_instance(static_cast<uint32_t>(i), limb_transform(i),
+                                   placements[i].position);
         // Leaf strokes as cards facing the sun, one caster set per family's leaf shader, each
         // in tree order whatever the threads did.
         std::vector<std::vector<StrokeCaster>> casters(nf);
@@ -465,8 +476,9 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
     if (plan.underpaint || plan.shadows)
         rep.passes.push_back(
             {"ray scenes", true, "Embree scenes the plan asks for", ms_since(t0),
-             (view_rays ? std::to_string(view_rays->mesh_count()) + " meshes for the camera"
-                        : std::string("no camera scene")) +
+             std::to_string(limbs.size()) + " trees' limbs built once and placed in each; " +
+                 (view_rays ? std::to_string(view_rays->mesh_count()) + " meshes for the camera"
+                            : std::string("no camera scene")) +
                  (sun_rays
                       ? ", " + std::to_string(sun_rays->mesh_count()) + " meshes + " +
                             std::to_string(sun_rays->caster_count()) + " stroke casters for the sun"

@@ -5,15 +5,16 @@
 
 #include <embree3/rtcore.h>
 #include <pmmintrin.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <xmmintrin.h>
 
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 #include <stdexcept>
 #include <string>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 namespace pleinair {
 
@@ -138,10 +139,71 @@ void fill_ray(RTCRay& r, const glm::dvec3& world, const glm::dvec3& anchor, cons
     r.flags = 0;
 }
 
+// A quad mesh's vertex and index buffers, placed by offset - anchor.
+void set_quad_buffers(RTCGeometry g, const QuadMesh& mesh, const glm::dvec3& shift) {
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
+    for (size_t i = 0; i < mesh.positions.size(); ++i) {
+        glm::dvec3 p = glm::dvec3(mesh.positions[i]) + shift;
+        v[3 * i] = static_cast<float>(p.x);
+        v[3 * i + 1] = static_cast<float>(p.y);
+        v[3 * i + 2] = static_cast<float>(p.z);
+    }
+    auto* q = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), mesh.quads.size()));
+    for (size_t i = 0; i < mesh.quads.size(); ++i)
+        for (int k = 0; k < 4; ++k) q[4 * i + k] = mesh.quads[i][k];
+}
+
+RTCDevice new_device() {
+    RTCDevice d = rtcNewDevice(nullptr);
+    if (!d)
+        throw std::runtime_error("Embree: cannot create a device (error " +
+                                 std::to_string(rtcGetDeviceError(nullptr)) + ")");
+    return d;
+}
+
 }  // namespace
+
+struct RayMeshes::Impl {
+    RTCDevice device = nullptr;
+    std::vector<RTCScene> scenes;  // one per mesh
+    ~Impl() {
+        for (RTCScene s : scenes) rtcReleaseScene(s);
+        if (device) rtcReleaseDevice(device);
+    }
+};
+
+RayMeshes::RayMeshes() : impl_(std::make_shared<Impl>()) { impl_->device = new_device(); }
+RayMeshes::~RayMeshes() = default;
+
+uint32_t RayMeshes::add(const QuadMesh& mesh) {
+    RTCScene scene = rtcNewScene(impl_->device);
+    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_MEDIUM);
+    RTCGeometry g = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_QUAD);
+    set_quad_buffers(g, mesh, glm::dvec3(0.0));
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(scene, g);
+    rtcReleaseGeometry(g);
+    impl_->scenes.push_back(scene);
+    return static_cast<uint32_t>(impl_->scenes.size() - 1);
+}
+
+void RayMeshes::commit() {
+    tbb::parallel_for(size_t{0}, impl_->scenes.size(), [&](size_t i) {
+        FlushDenormals ftz;
+        rtcCommitScene(impl_->scenes[i]);
+    });
+}
+
+uint32_t RayMeshes::size() const { return static_cast<uint32_t>(impl_->scenes.size()); }
 
 struct RayScene::Impl {
     glm::dvec3 anchor;
+    std::shared_ptr<RayMeshes::Impl> shared;  // keeps the device and instanced meshes alive
+    // Per geometry id: how a hit's object-space normal turns into the world's (identity for
+    // plain meshes; the inverse transpose of an instance's linear part).
+    std::vector<glm::mat3> normal_to_world;
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;    // opaque surfaces
     RTCScene casters = nullptr;  // stroke cards, created on first use
@@ -150,13 +212,17 @@ struct RayScene::Impl {
     std::vector<std::unique_ptr<CasterSet>> sets;
 };
 
-RayScene::RayScene(const glm::dvec3& anchor) : impl_(std::make_unique<Impl>()) {
+RayScene::RayScene(const glm::dvec3& anchor, const RayMeshes* shared)
+    : impl_(std::make_unique<Impl>()) {
     FlushDenormals ftz;
     impl_->anchor = anchor;
-    impl_->device = rtcNewDevice(nullptr);
-    if (!impl_->device)
-        throw std::runtime_error("Embree: cannot create a device (error " +
-                                 std::to_string(rtcGetDeviceError(nullptr)) + ")");
+    if (shared) {
+        impl_->shared = shared->impl_;
+        impl_->device = shared->impl_->device;
+        rtcRetainDevice(impl_->device);
+    } else {
+        impl_->device = new_device();
+    }
     impl_->scene = rtcNewScene(impl_->device);
     // Medium: scenes are built once per frame, and high quality costs more than it saves.
     rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_MEDIUM);
@@ -170,23 +236,37 @@ RayScene::~RayScene() {
 
 uint32_t RayScene::add_mesh(const QuadMesh& mesh, const glm::dvec3& offset) {
     RTCGeometry g = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_QUAD);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
-    const glm::dvec3 shift = offset - impl_->anchor;
-    for (size_t i = 0; i < mesh.positions.size(); ++i) {
-        glm::dvec3 p = glm::dvec3(mesh.positions[i]) + shift;
-        v[3 * i] = static_cast<float>(p.x);
-        v[3 * i + 1] = static_cast<float>(p.y);
-        v[3 * i + 2] = static_cast<float>(p.z);
-    }
-    auto* q = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), mesh.quads.size()));
-    for (size_t i = 0; i < mesh.quads.size(); ++i)
-        for (int k = 0; k < 4; ++k) q[4 * i + k] = mesh.quads[i][k];
+    set_quad_buffers(g, mesh, offset - impl_->anchor);
     rtcCommitGeometry(g);
     uint32_t id = rtcAttachGeometry(impl_->scene, g);
     rtcReleaseGeometry(g);
     ++impl_->meshes;
+    impl_->normal_to_world.resize(std::max<size_t>(impl_->normal_to_world.size(), id + 1),
+                                  glm::mat3(1.0f));
+    return id;
+}
+
+uint32_t RayScene::add_instance(uint32_t mesh, const glm::dmat3& linear, const glm::dvec3& offset) {
+    if (!impl_->shared || mesh >= impl_->shared->scenes.size())
+        throw std::invalid_argument("RayScene::add_instance: no shared mesh " +
+                                    std::to_string(mesh));
+    RTCGeometry g = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(g, impl_->shared->scenes[mesh]);
+    // Column-major 3x4: the linear part's columns, then the translation from the anchor.
+    const glm::dvec3 t = offset - impl_->anchor;
+    float xfm[12];
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) xfm[3 * c + r] = static_cast<float>(linear[c][r]);
+    xfm[9] = static_cast<float>(t.x), xfm[10] = static_cast<float>(t.y);
+    xfm[11] = static_cast<float>(t.z);
+    rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+    rtcCommitGeometry(g);
+    uint32_t id = rtcAttachGeometry(impl_->scene, g);
+    rtcReleaseGeometry(g);
+    ++impl_->meshes;
+    impl_->normal_to_world.resize(std::max<size_t>(impl_->normal_to_world.size(), id + 1),
+                                  glm::mat3(1.0f));
+    impl_->normal_to_world[id] = glm::mat3(glm::transpose(glm::inverse(linear)));
     return id;
 }
 
@@ -255,9 +335,13 @@ RayHit RayScene::intersect(const glm::dvec3& origin, const glm::vec3& dir, float
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return out;
     out.hit = true;
     out.t = rh.ray.tfar;
-    out.geometry = rh.hit.geomID;
+    // On an instance, Embree names the instance in instID and reports the normal in the
+    // instanced mesh's own space.
+    const bool instanced = rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID;
+    out.geometry = instanced ? rh.hit.instID[0] : rh.hit.geomID;
     out.primitive = rh.hit.primID;
     glm::vec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+    if (instanced) ng = impl_->normal_to_world[out.geometry] * ng;
     float len = glm::length(ng);
     out.normal = len > 0 && std::isfinite(len) ? ng / len : glm::vec3(0, 1, 0);
     return out;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 #include <limits>
 #include <memory>
@@ -57,22 +58,51 @@ struct StrokeCaster {
 // half: shadow), or the light is attenuated by every card it crosses.
 enum class ShadowMode { kThreshold, kTransmissive };
 
+// Meshes several RayScenes share (each tree's limbs, in the camera's scene and the sun's),
+// each kept in its own space and built once; scenes place them as instances. Keep the meshes
+// alive while a scene built on them is in use (scenes hold a reference to the Embree device
+// and meshes themselves, so destruction order does not matter).
+class RayMeshes {
+  public:
+    RayMeshes();
+    ~RayMeshes();
+    RayMeshes(const RayMeshes&) = delete;
+    RayMeshes& operator=(const RayMeshes&) = delete;
+
+    // Copies the mesh into Embree, in its own coordinates; returns its index.
+    uint32_t add(const QuadMesh& mesh);
+    // Builds every mesh's acceleration structure, in parallel; call once after the last add.
+    void commit();
+    uint32_t size() const;
+
+    struct Impl;
+
+  private:
+    std::shared_ptr<Impl> impl_;
+    friend class RayScene;
+};
+
 class RayScene {
   public:
-    explicit RayScene(const glm::dvec3& anchor = glm::dvec3(0.0));
+    // With `shared`, the scene lives on its device and can place its meshes by add_instance.
+    explicit RayScene(const glm::dvec3& anchor = glm::dvec3(0.0),
+                      const RayMeshes* shared = nullptr);
     ~RayScene();
     RayScene(const RayScene&) = delete;
     RayScene& operator=(const RayScene&) = delete;
 
     // Copies the mesh (world positions, placed by `offset`) into Embree; returns its id.
     uint32_t add_mesh(const QuadMesh& mesh, const glm::dvec3& offset = glm::dvec3(0.0));
+    // Places shared mesh `mesh` (committed) at world = offset + linear * p; returns the
+    // geometry id, which hits on it report. `linear` must be invertible.
+    uint32_t add_instance(uint32_t mesh, const glm::dmat3& linear, const glm::dvec3& offset);
     // Adds stroke casters, evaluated by an occlusion filter with the given stroke parameters
     // (which must outlive the scene). Returns the geometry id; primitive i is casters[i].
-    uint32_t add_casters(const std::vector<StrokeCaster>& casters,
-                         const StrokeShaderParams& shader, const EdgeTable& edge);
+    uint32_t add_casters(const std::vector<StrokeCaster>& casters, const StrokeShaderParams& shader,
+                         const EdgeTable& edge);
     // Builds the acceleration structure; call once after the last add.
     void commit();
-    uint32_t mesh_count() const;
+    uint32_t mesh_count() const;  // meshes and instances
     uint32_t caster_count() const;
 
     // Nearest hit along a unit direction, within tmax. `surface_normal`, if the origin lies

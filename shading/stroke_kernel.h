@@ -24,8 +24,8 @@ struct StrokeRow {
 };
 
 // Shades pixels x0 .. x0 + count - 1 of row y. Per pixel: alpha (0 where no sample is inside
-// or nothing shows), its colour (valid where alpha > 0, finite everywhere) and the number of samples inside the
-// sprite (the fragments counted by the benchmarks). count <= kStrokeRowMax.
+// or nothing shows), its colour (valid where alpha > 0, finite everywhere) and the number of
+// samples inside the sprite (the fragments counted by the benchmarks). count <= kStrokeRowMax.
 inline constexpr int kStrokeRowMax = 4096;
 void shade_stroke_row(const StrokeRow& row, int y, int x0, int count, float* alpha, float* r,
                       float* g, float* b, int* inside);

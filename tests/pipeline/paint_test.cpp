@@ -9,8 +9,8 @@
 
 #include <cmath>
 #include <cstring>
-#include <limits>
 #include <glm/geometric.hpp>
+#include <limits>
 
 #include "pipeline/image_io.h"
 #include "test_util.h"

@@ -40,6 +40,54 @@ TEST(Rays, NearestHitAndShadowRays) {
     EXPECT_FALSE(rays.occluded({0, 0, 0}, {0, 1, 0}, 1.0f));  // the ball is 2.4 above
 }
 
+// A shared mesh placed by an instance answers like the same mesh copied into place: the same
+// hits, the hit named by the instance's id, the normal turned into the world.
+TEST(Rays, InstancesAnswerLikeTheMeshCopiedIntoPlace) {
+    RockParams rp;
+    rp.roughness = 0.3;
+    const QuadMesh rock = generate_rock(rp, 3, {0, 0, 0});
+    const double angle = 0.7, scale = 1.8;
+    const double c = std::cos(angle), s = std::sin(angle);
+    const glm::dmat3 linear(glm::dvec3(c, 0, -s) * scale, glm::dvec3(0, 1, 0) * scale,
+                            glm::dvec3(s, 0, c) * scale);
+    const glm::dvec3 where(1e4, 3, -2e4), anchor(1e4 + 7, 0, -2e4 + 5);
+    QuadMesh placed = rock;
+    for (auto& p : placed.positions) p = glm::vec3(linear * glm::dvec3(p));
+    RayScene copied(anchor);
+    copied.add_mesh(floor_quad(50), where);
+    copied.add_mesh(placed, where);
+    copied.commit();
+    RayMeshes shared;
+    const uint32_t m = shared.add(rock);
+    shared.commit();
+    RayScene instanced(anchor, &shared);
+    instanced.add_mesh(floor_quad(50), where);
+    EXPECT_EQ(instanced.add_instance(m, linear, where), 1u);
+    instanced.commit();
+    EXPECT_EQ(instanced.mesh_count(), 2u);
+    Rng rng = make_rng(11, Purpose::kTree, 0);
+    int rock_hits = 0;
+    for (int i = 0; i < 400; ++i) {
+        const glm::dvec3 o = where + glm::dvec3(rand_range(rng, -2, 2), 6, rand_range(rng, -2, 2));
+        const glm::vec3 d =
+            glm::normalize(glm::vec3(rand_range(rng, -0.3, 0.3), -1, rand_range(rng, -0.3, 0.3)));
+        const RayHit a = copied.intersect(o, d), b = instanced.intersect(o, d);
+        ASSERT_EQ(a.hit, b.hit) << i;
+        if (!a.hit) continue;
+        ASSERT_EQ(a.geometry, b.geometry) << i;
+        EXPECT_NEAR(a.t, b.t, 1e-3f) << i;
+        if (a.geometry != 1 || a.primitive != b.primitive) continue;
+        EXPECT_GT(glm::dot(a.normal, b.normal), 0.999f) << i;  // the instance's, in the world
+        ++rock_hits;
+        EXPECT_TRUE(instanced.occluded(o, d, a.t + 0.05f)) << i;
+        EXPECT_FALSE(instanced.occluded(o, d, a.t - 0.05f)) << i;
+    }
+    EXPECT_GT(rock_hits, 100);
+    EXPECT_THROW(instanced.add_instance(5, linear, where), std::invalid_argument);
+    RayScene alone;
+    EXPECT_THROW(alone.add_instance(0, linear, where), std::invalid_argument);
+}
+
 // A lit flat ground with no casters has no shadowed point, near the origin and 1e5 away, with
 // the sun overhead or grazing at 2 degrees.
 TEST(Rays, FlatGroundHasNoAcneAnywhere) {
@@ -93,7 +141,8 @@ StrokeCaster card(glm::dvec3 center, float label, const StrokeShaderParams& p) {
     c.axis_s = {1, 0, 0};
     c.axis_t = {0, 0, 1};
     c.half_w = c.half_l = 1.0f;
-    c.noise = noise_of(stroke_constants(p, 1.0f, 0.5f, 0.5f, label, 0, 1.0f, 0.0f, 0.0f, false, false));
+    c.noise =
+        noise_of(stroke_constants(p, 1.0f, 0.5f, 0.5f, label, 0, 1.0f, 0.0f, 0.0f, false, false));
     return c;
 }
 

@@ -48,8 +48,10 @@ TEST(RenderCli, WritesPngTiffAndExrWithAovs) {
     EXPECT_EQ(spec.channelformat(id), OIIO::TypeDesc::FLOAT);
     EXPECT_EQ(spec.channelformat(spec.channelindex("Z")), OIIO::TypeDesc::FLOAT);
     // A landscape: surface strokes' ids (65536 + material) survive exactly, no Inf.
-    auto land = run_pleinair("render windmill-hills --set /camera/width=64 --set /camera/height=36 "
-                             "--aovs -o " + (dir / "l.exr").string());
+    auto land = run_pleinair(
+        "render windmill-hills --set /camera/width=64 --set /camera/height=36 "
+        "--aovs -o " +
+        (dir / "l.exr").string());
     ASSERT_EQ(land.exit_code, 0) << land.err;
     auto lin = OIIO::ImageInput::open((dir / "l.exr").string());
     ASSERT_TRUE(lin);
