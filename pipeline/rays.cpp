@@ -266,7 +266,13 @@ uint32_t RayScene::add_instance(uint32_t mesh, const glm::dmat3& linear, const g
     ++impl_->meshes;
     impl_->normal_to_world.resize(std::max<size_t>(impl_->normal_to_world.size(), id + 1),
                                   glm::mat3(1.0f));
-    impl_->normal_to_world[id] = glm::mat3(glm::transpose(glm::inverse(linear)));
+    // Normals only need a direction: scale the matrix to unit size first, so a tree scaled by
+    // 1e-30 or 1e6 still gives finite, well-conditioned normals.
+    double big = 0;
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) big = std::max(big, std::abs(linear[c][r]));
+    impl_->normal_to_world[id] =
+        big > 0 ? glm::mat3(glm::transpose(glm::inverse(linear / big))) : glm::mat3(1.0f);
     return id;
 }
 

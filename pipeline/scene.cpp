@@ -524,13 +524,12 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
             r.claim("seed");
             r.vector("position", placed.position, "", "");
             r.number("rotation", placed.rotation, {-1e6, 1e6}, "", "");
-            r.number("scale", placed.scale, {0, 1e6}, "", "");
+            // Ray queries place each tree's limbs by this scale: beyond 1e4 either way, rays
+            // in the tree's own space stop being representable.
+            r.number("scale", placed.scale, {1e-4, 1e4}, "", "");
             r.finish();
             if (auto it = t.find("seed"); it != t.end())
                 placed.seed = read_seed(*it, ptr + "/seed", problems);
-            if (!(placed.scale > 0))
-                problems.push_back(
-                    {ptr + "/scale", "must be > 0, got " + format_number(placed.scale)});
             bool found = false;
             for (size_t k = 0; k < s.families.size(); ++k)
                 if (s.families[k].name == family)

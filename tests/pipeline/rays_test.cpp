@@ -83,6 +83,16 @@ TEST(Rays, InstancesAnswerLikeTheMeshCopiedIntoPlace) {
         EXPECT_FALSE(instanced.occluded(o, d, a.t - 0.05f)) << i;
     }
     EXPECT_GT(rock_hits, 100);
+    // The smallest and largest placements a scene allows keep finite, unit normals.
+    for (double k : {1e-4, 1e4}) {
+        RayScene r(glm::dvec3(0.0), &shared);  // at the origin: ray offsets stay below 1e-4
+        r.add_instance(m, linear * k, glm::dvec3(0.0));
+        r.commit();
+        const RayHit h = r.intersect(glm::dvec3(0, 40.0 * k, 0), {0, -1, 0});
+        ASSERT_TRUE(h.hit) << k;
+        EXPECT_NEAR(glm::length(h.normal), 1.0f, 1e-4f) << k;
+        EXPECT_GT(h.normal.y, 0.5f) << k;  // the rock's top faces up
+    }
     EXPECT_THROW(instanced.add_instance(5, linear, where), std::invalid_argument);
     RayScene alone;
     EXPECT_THROW(alone.add_instance(0, linear, where), std::invalid_argument);

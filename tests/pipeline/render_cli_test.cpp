@@ -110,6 +110,8 @@ TEST(RenderCli, BadScenesAreOneLineExitTwoAndNoImage) {
         {R"({"families": {"a": {"preset": "oak"}}, "trees": [{"family": "b"}]})",
          ": /trees/0/family: no family \"b\" in /families (have: a)\n"},
         {R"({"render": {"samples": 3}})", ": /render/samples: must be 1, 4 or 16, got 3\n"},
+        {R"({"families": {"a": {"preset": "oak"}}, "trees": [{"family": "a", "scale": 0}]})",
+         ": /trees/0/scale: must be in [0.0001, 10000], got 0\n"},
         {R"({"families": {"a": {"preset": "oak", "leaf_palette": "missing.json"}}})",
          ": /families/a/leaf_palette: "},
         {R"({"background": {"sky_zenith": [2, 0, 0]}})",
