@@ -2,6 +2,7 @@
 // the stroke shader; the background is painted per tile first.
 #include "pipeline/paint.h"
 
+#include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_sort.h>
@@ -485,12 +486,14 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                       : std::string(", no shadow scene"))});
     const ShadowMode shadow_mode =
         rs.shadows == "threshold" ? ShadowMode::kThreshold : ShadowMode::kTransmissive;
-    std::atomic<uint64_t> shadow_rays{0}, view_culled{0};
+    // Counted per thread: one shared atomic, bumped for every ray, bounces between the cores.
+    tbb::combinable<uint64_t> shadow_rays([] { return uint64_t{0}; }),
+        view_culled([] { return uint64_t{0}; });
 
     // Light reaching a particle from the sun, lifted off its surface by `lift` along `n`.
     auto light_at = [&](const glm::dvec3& world, const glm::vec3* n, float lift) -> float {
         if (!sun_rays) return 1.0f;
-        ++shadow_rays;
+        ++shadow_rays.local();
         glm::dvec3 o = n ? world + glm::dvec3(*n) * static_cast<double>(lift) : world;
         return sun_rays->transmittance(o, sun, shadow_mode, std::numeric_limits<float>::infinity(),
                                        n);
@@ -506,7 +509,7 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
         // Any hit short of the eye hides it: an occlusion query, cheaper than the nearest hit.
         bool seen =
             !view_rays->occluded(o, glm::vec3(to_eye / dist), static_cast<float>(dist) * 0.999f, n);
-        if (!seen) ++view_culled;
+        if (!seen) ++view_culled.local();
         return seen;
     };
 
@@ -648,7 +651,7 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
     }
     per_item.clear();
     per_item_grids.clear();
-    rep.shadow_rays = shadow_rays;
+    rep.shadow_rays = shadow_rays.combine(std::plus<uint64_t>());
     rep.passes.push_back(
         {"sprites", true,
          std::string("every particle faces the camera") +
@@ -658,7 +661,7 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
              (plan.underpaint ? "; hidden ones culled" : ""),
          ms_since(t0),
          std::to_string(sprites.size()) + " sprites, " + std::to_string(rep.culled) + " culled (" +
-             std::to_string(view_culled.load()) + " hidden)" +
+             std::to_string(view_culled.combine(std::plus<uint64_t>())) + " hidden)" +
              (plan.shadows ? ", " + std::to_string(rep.shadow_rays) + " shadow rays" : "")});
 
     // Back to front; the index breaks ties so the order is total and thread-independent.
