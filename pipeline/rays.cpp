@@ -234,16 +234,23 @@ RayScene::~RayScene() {
     if (impl_->device) rtcReleaseDevice(impl_->device);
 }
 
-uint32_t RayScene::add_mesh(const QuadMesh& mesh, const glm::dvec3& offset) {
-    RTCGeometry g = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_QUAD);
-    set_quad_buffers(g, mesh, offset - impl_->anchor);
+// Commits g, attaches it to the opaque scene and records how its normals reach the world.
+uint32_t RayScene::attach(void* geometry, const glm::mat3& normal_to_world) {
+    auto g = static_cast<RTCGeometry>(geometry);
     rtcCommitGeometry(g);
     uint32_t id = rtcAttachGeometry(impl_->scene, g);
     rtcReleaseGeometry(g);
     ++impl_->meshes;
     impl_->normal_to_world.resize(std::max<size_t>(impl_->normal_to_world.size(), id + 1),
                                   glm::mat3(1.0f));
+    impl_->normal_to_world[id] = normal_to_world;
     return id;
+}
+
+uint32_t RayScene::add_mesh(const QuadMesh& mesh, const glm::dvec3& offset) {
+    RTCGeometry g = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_QUAD);
+    set_quad_buffers(g, mesh, offset - impl_->anchor);
+    return attach(g, glm::mat3(1.0f));
 }
 
 uint32_t RayScene::add_instance(uint32_t mesh, const glm::dmat3& linear, const glm::dvec3& offset) {
@@ -260,20 +267,13 @@ uint32_t RayScene::add_instance(uint32_t mesh, const glm::dmat3& linear, const g
     xfm[9] = static_cast<float>(t.x), xfm[10] = static_cast<float>(t.y);
     xfm[11] = static_cast<float>(t.z);
     rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
-    rtcCommitGeometry(g);
-    uint32_t id = rtcAttachGeometry(impl_->scene, g);
-    rtcReleaseGeometry(g);
-    ++impl_->meshes;
-    impl_->normal_to_world.resize(std::max<size_t>(impl_->normal_to_world.size(), id + 1),
-                                  glm::mat3(1.0f));
-    // Normals only need a direction: scale the matrix to unit size first, so a tree scaled by
-    // 1e-30 or 1e6 still gives finite, well-conditioned normals.
+    // Normals only need a direction: the matrix is scaled to unit size before it is inverted,
+    // so tiny and huge placements alike give finite, well-conditioned normals.
     double big = 0;
     for (int c = 0; c < 3; ++c)
         for (int r = 0; r < 3; ++r) big = std::max(big, std::abs(linear[c][r]));
-    impl_->normal_to_world[id] =
-        big > 0 ? glm::mat3(glm::transpose(glm::inverse(linear / big))) : glm::mat3(1.0f);
-    return id;
+    return attach(
+        g, big > 0 ? glm::mat3(glm::transpose(glm::inverse(linear / big))) : glm::mat3(1.0f));
 }
 
 uint32_t RayScene::add_casters(const std::vector<StrokeCaster>& casters,

@@ -124,6 +124,7 @@ class RayScene {
                         const glm::vec3* surface_normal = nullptr) const;
 
   private:
+    uint32_t attach(void* geometry, const glm::mat3& normal_to_world);  // an RTCGeometry
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
