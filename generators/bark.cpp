@@ -65,7 +65,8 @@ BarkParticles emit_bark(const Tree& tree, const BarkOptions& o, uint64_t seed) {
             glm::vec3 axis = c1 - c0;
             const float len = glm::length(axis);
             axis = len > 1e-12f && std::isfinite(len) ? axis / len : glm::vec3(0, 1, 0);
-            Rng rng = make_rng(seed, Purpose::kBark, b.key, k);
+            const uint32_t slot = k < b.face_slots.size() ? b.face_slots[k] : k;
+            Rng rng = make_rng(seed, Purpose::kBark, b.key, slot);
             const size_t first = static_cast<size_t>(b.faces[k]) * per_face;
             for (size_t f = first; f < first + per_face; ++f) {
                 const glm::uvec4& q = m.quads[f];

@@ -31,9 +31,9 @@ struct BarkOptions {
 
 // Pure: strokes are scattered uniformly over each render face of the limbs that qualify, as
 // many as coverage asks (a fractional count is rounded by a draw), except on the trunk below
-// its planting depth. Each limb's control face
-// draws from its own stream keyed by (seed, limb key, the face's place in the limb), so a
-// limb's strokes never depend on other limbs.
+// its planting depth. Each control face draws from its own stream keyed by (seed, limb key,
+// the face's slot on the limb), so a face's strokes depend on no other face: not on other
+// limbs, nor on which of its own limb's sides branches took over.
 BarkParticles emit_bark(const Tree& tree, const BarkOptions& options, uint64_t seed);
 
 }  // namespace pleinair

@@ -98,19 +98,24 @@ Tree generate_tree(const TreeParams& params, uint64_t seed, const TreeOptions& o
             if (L.sides[k].is_valid()) {  // invalid: a branch grew from it and owns it
                 b.faces.push_back(static_cast<uint32_t>(L.sides[k].idx()));
                 b.face_segments.push_back(static_cast<uint32_t>(k / 4));
+                b.face_slots.push_back(static_cast<uint32_t>(k));
             }
         b.faces.push_back(static_cast<uint32_t>(L.top.idx()));
         b.face_segments.push_back(last_segment);
+        b.face_slots.push_back(static_cast<uint32_t>(L.sides.size()));
         tree.branches.push_back(std::move(b));
     }
     // The one face no limb lists: the trunk's base, the first face the trunk added.
     std::vector<bool> owned(tree.control.quads.size(), false);
     for (const BranchInfo& b : tree.branches)
         for (uint32_t f : b.faces) owned[f] = true;
+    BranchInfo& trunk = tree.branches[0];
+    const uint32_t base_slot = trunk.face_slots.back() + 1;
     for (uint32_t f = 0; f < owned.size(); ++f)
         if (!owned[f]) {
-            tree.branches[0].faces.push_back(f);
-            tree.branches[0].face_segments.push_back(0);
+            trunk.faces.push_back(f);
+            trunk.face_segments.push_back(0);
+            trunk.face_slots.push_back(base_slot);
         }
     tree.planting_depth = planting_depth(tree);
     return tree;

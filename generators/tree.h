@@ -31,6 +31,10 @@ struct BranchInfo {
     // f * 4^render_levels + k, for k < 4^render_levels, is a piece of control face f.
     std::vector<uint32_t> faces;
     std::vector<uint32_t> face_segments;
+    // Each face's place on the limb, stable whatever other limbs do: 4 * segment + side for a
+    // side face, then the cap, then (trunk) the base. A side a branch grew from is the
+    // branch's, and its slot is simply missing here; later stages key random streams by slot.
+    std::vector<uint32_t> face_slots;
 };
 
 struct TreeOptions {

@@ -9,13 +9,13 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <glm/geometric.hpp>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include "generators/rng.h"
 #include "pipeline/rays.h"
@@ -256,11 +256,9 @@ glm::vec3 TreePlacement::turn(const glm::vec3& v) const {
     return glm::vec3(rotate_y(glm::dvec3(v), c, s));
 }
 
-QuadMesh placed_limbs(const BuiltTree& b) {
-    const TreePlacement pl = placement(b);
-    QuadMesh m = b.tree.render;
-    for (auto& p : m.positions) p = glm::vec3(pl.place(p) - pl.position);
-    return m;
+glm::dmat3 TreePlacement::linear() const {
+    return glm::dmat3(glm::dvec3(c, 0, -s) * scale, glm::dvec3(0, scale, 0),
+                      glm::dvec3(s, 0, c) * scale);
 }
 
 std::vector<StrokeCaster> leaf_casters(const SceneDesc& scene, const BuiltTree& b,
@@ -414,18 +412,14 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
     // the terrain (its material varies over it).
     std::vector<int64_t> view_material;
     // Each tree's limbs are built once, in its own space, and placed in both scenes.
-    RayMeshes limbs;
-    auto limb_transform = [&](size_t i) {
-        const TreePlacement& pl = placements[i];
-        return glm::dmat3(glm::dvec3(pl.c, 0, -pl.s) * pl.scale, glm::dvec3(0, pl.scale, 0),
-                          glm::dvec3(pl.s, 0, pl.c) * pl.scale);
-    };
+    std::optional<RayMeshes> limbs;  // only when a ray scene is built: no Embree device else
     if (plan.underpaint || plan.shadows) {
-        for (const BuiltTree& b : trees) limbs.add(b.tree.render);
-        limbs.commit();
+        limbs.emplace();
+        for (const BuiltTree& b : trees) limbs->add(b.tree.render);
+        limbs->commit();
     }
     auto build_view = [&] {
-        view_rays = std::make_unique<RayScene>(anchor, &limbs);
+        view_rays = std::make_unique<RayScene>(anchor, &*limbs);
         if (land.has_terrain) view_rays->add_mesh(land.terrain_mesh), view_material.push_back(-1);
         if (land.has_water)
             view_rays->add_mesh(land.water_mesh),
@@ -434,19 +428,19 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
             view_rays->add_mesh(land.rocks[i]),
                 view_material.push_back(static_cast<int64_t>(2 * nf + scene.rocks[i].material));
         for (size_t i = 0; i < trees.size(); ++i)
-            view_rays->add_instance(static_cast<uint32_t>(i), limb_transform(i),
+            view_rays->add_instance(static_cast<uint32_t>(i), placements[i].linear(),
                                     placements[i].position),
                 view_material.push_back(static_cast<int64_t>(2 * trees[i].family + 1));
         view_rays->commit();
     };
     auto build_sun = [&] {
-        sun_rays = std::make_unique<RayScene>(anchor, &limbs);
+        sun_rays = std::make_unique<RayScene>(anchor, &*limbs);
         // Surfaces that grow grass and rock strokes cast shadows though the camera never sees
         // them (IV.7); water casts none.
         if (land.has_terrain) sun_rays->add_mesh(land.terrain_mesh);
         for (const auto& r : land.rocks) sun_rays->add_mesh(r);
         for (size_t i = 0; i < trees.size(); ++i)
-            sun_rays->add_instance(static_cast<uint32_t>(i), limb_transform(i),
+            sun_rays->add_instance(static_cast<uint32_t>(i), placements[i].linear(),
                                    placements[i].position);
         // Leaf strokes as cards facing the sun, one caster set per family's leaf shader, each
         // in tree order whatever the threads did.
@@ -465,7 +459,8 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
                                       materials[2 * f].edge);
         sun_rays->commit();
     };
-    // The two scenes share nothing: built side by side (Embree's builds are partly serial).
+    // The two scenes only read what they share (the device, the committed limbs): built side
+    // by side (Embree's builds are partly serial).
     if (plan.underpaint && plan.shadows)
         tbb::parallel_invoke(build_view, build_sun);
     else if (plan.underpaint)
@@ -477,7 +472,7 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
     if (plan.underpaint || plan.shadows)
         rep.passes.push_back(
             {"ray scenes", true, "Embree scenes the plan asks for", ms_since(t0),
-             std::to_string(limbs.size()) + " trees' limbs built once and placed in each; " +
+             std::to_string(limbs->size()) + " trees' limbs built once and placed in each; " +
                  (view_rays ? std::to_string(view_rays->mesh_count()) + " meshes for the camera"
                             : std::string("no camera scene")) +
                  (sun_rays
@@ -863,7 +858,7 @@ Frame paint_frame(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
             const StrokeShaderParams& p = *m.shader;
             // The sprite's colour ramp (palette, tint and atmosphere folded in), when the
             // settings allow the table: built here, per tile the sprite touches, so no frame-
-            // sized array of ramps is ever held (17 colours a sprite would outweigh the sprite).
+            // sized array of ramps is ever held (a ramp's 384 bytes would outweigh the sprite).
             StrokeRamp local_ramp;
             const StrokeRamp* ramp = nullptr;
             // Light varying over the sprite moves its lightness per fragment: no ramp then.

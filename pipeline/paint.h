@@ -35,11 +35,9 @@ struct TreePlacement {
     glm::dvec3 position{0.0};
     glm::dvec3 place(const glm::vec3& tree_local) const;
     glm::vec3 turn(const glm::vec3& direction) const;
+    glm::dmat3 linear() const;  // place(p) = position + linear() * p
 };
 TreePlacement placement(const BuiltTree& tree);
-
-// The render mesh (trunk and limbs) rotated and scaled, relative to the tree's position.
-QuadMesh placed_limbs(const BuiltTree& tree);
 
 // The tree's leaf strokes as shadow casters: cards facing the sun, sized and turned like the
 // strokes, with the same noise (IV.4.2).

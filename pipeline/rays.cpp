@@ -237,9 +237,15 @@ RayScene::~RayScene() {
 // Commits g, attaches it to the opaque scene and records how its normals reach the world.
 uint32_t RayScene::attach(void* geometry, const glm::mat3& normal_to_world) {
     auto g = static_cast<RTCGeometry>(geometry);
+    if (!g)
+        throw std::runtime_error("Embree: cannot create a geometry (error " +
+                                 std::to_string(rtcGetDeviceError(impl_->device)) + ")");
     rtcCommitGeometry(g);
     uint32_t id = rtcAttachGeometry(impl_->scene, g);
     rtcReleaseGeometry(g);
+    if (id == RTC_INVALID_GEOMETRY_ID)
+        throw std::runtime_error("Embree: cannot attach a geometry (error " +
+                                 std::to_string(rtcGetDeviceError(impl_->device)) + ")");
     ++impl_->meshes;
     impl_->normal_to_world.resize(std::max<size_t>(impl_->normal_to_world.size(), id + 1),
                                   glm::mat3(1.0f));

@@ -59,9 +59,8 @@ struct StrokeCaster {
 enum class ShadowMode { kThreshold, kTransmissive };
 
 // Meshes several RayScenes share (each tree's limbs, in the camera's scene and the sun's),
-// each kept in its own space and built once; scenes place them as instances. Keep the meshes
-// alive while a scene built on them is in use (scenes hold a reference to the Embree device
-// and meshes themselves, so destruction order does not matter).
+// each kept in its own space and built once; scenes place them as instances. A scene holds
+// its own reference to the device and the meshes, so either may be destroyed first.
 class RayMeshes {
   public:
     RayMeshes();

@@ -253,7 +253,8 @@ void ShadeStrokeRow(const StrokeRow& row, int y, int x0, int count, float* alpha
             V ny = hn::Add(hn::Mul(t, hn::Set(d, k.sub_frequ)), hn::Set(d, k.offset_s));
             V xr = hn::Mul(FractalNoise(d, nx, ny, 1),
                            hn::Set(d, static_cast<float>(StrokeRamp::kSize)));
-            auto i = hn::Min(hn::ConvertTo(di, xr), hn::Set(di, StrokeRamp::kSize - 1));
+            auto i = hn::Min(hn::Max(hn::ConvertTo(di, xr), hn::Zero(di)),
+                             hn::Set(di, StrokeRamp::kSize - 1));
             V f = hn::Sub(xr, hn::ConvertTo(d, i));
             const RampIndex<decltype(d)> at(d, i);
             cr = hn::Add(at.lookup(ramp.base[0]), hn::Mul(at.lookup(ramp.step[0]), f));

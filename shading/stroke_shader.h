@@ -286,10 +286,11 @@ inline StrokeRamp make_ramp(const StrokeConstants& k, const Palette& palette) {
     return r;
 }
 
-// The ramp's colour at noise value n in 0..1 (1 is the end of the last interval).
+// The ramp's colour at noise value n in 0..1 (1 is the end of the last interval; outside,
+// the end intervals extend).
 inline Color ramp_color(const StrokeRamp& r, float n) {
     float x = n * StrokeRamp::kSize;
-    int i = std::min(static_cast<int>(x), StrokeRamp::kSize - 1);
+    int i = std::clamp(static_cast<int>(x), 0, StrokeRamp::kSize - 1);
     float f = x - static_cast<float>(i);
     return {r.base[0][i] + r.step[0][i] * f, r.base[1][i] + r.step[1][i] * f,
             r.base[2][i] + r.step[2][i] * f};

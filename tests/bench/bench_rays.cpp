@@ -20,6 +20,7 @@ struct Fixture {
     std::vector<BuiltTree> trees;
     BuiltLandscape land;
     std::vector<glm::dvec3> origins;  // leaf and surface particles: where shadow rays start
+    RayMeshes limbs;
     std::unique_ptr<RayScene> filtered, opaque;
     glm::vec3 sun;
 
@@ -29,12 +30,18 @@ struct Fixture {
         land = build_landscape(scene);
         sun = glm::vec3(scene.sun_direction);
         const glm::dvec3 anchor = scene.camera.eye;
-        filtered = std::make_unique<RayScene>(anchor);
-        opaque = std::make_unique<RayScene>(anchor);
+        // As the painter builds them: each tree's limbs once, placed by instances.
+        for (const BuiltTree& b : trees) limbs.add(b.tree.render);
+        limbs.commit();
+        filtered = std::make_unique<RayScene>(anchor, &limbs);
+        opaque = std::make_unique<RayScene>(anchor, &limbs);
         for (RayScene* r : {filtered.get(), opaque.get()}) {
             r->add_mesh(land.terrain_mesh);
             for (const auto& rock : land.rocks) r->add_mesh(rock);
-            for (const BuiltTree& b : trees) r->add_mesh(placed_limbs(b), b.position);
+            for (size_t i = 0; i < trees.size(); ++i) {
+                const TreePlacement pl = placement(trees[i]);
+                r->add_instance(static_cast<uint32_t>(i), pl.linear(), pl.position);
+            }
         }
         std::vector<std::vector<StrokeCaster>> per_family(scene.families.size());
         QuadMesh cards;

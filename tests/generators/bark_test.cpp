@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <tuple>
 
 #include "generators/tree.h"
 #include "test_util.h"
@@ -167,6 +168,31 @@ TEST(Bark, OneLimbsStrokesDoNotDependOnAnothers) {
     for (size_t i = 0; i < all.size(); ++i)
         if (all.limb[i] == 0) trunk_in_all.push_back(all.position[i]);
     EXPECT_EQ(trunk.position, trunk_in_all);
+}
+
+// A branch growing from one of a limb's sides takes that face away; the strokes of the
+// limb's other faces stay where they were.
+TEST(Bark, StrokesOfAFaceDoNotDependOnTheLimbsOtherFaces) {
+    Tree t = generate_tree(test::preset("oak"), 3);
+    BarkOptions o;
+    o.max_level = 0;
+    const BarkParticles all = emit_bark(t, o, 9);
+    Tree fewer = t;
+    BranchInfo& trunk = fewer.branches[0];
+    ASSERT_GT(trunk.faces.size(), 6u);
+    trunk.faces.erase(trunk.faces.begin() + 2);  // a side of the first segment
+    trunk.face_segments.erase(trunk.face_segments.begin() + 2);
+    trunk.face_slots.erase(trunk.face_slots.begin() + 2);
+    const BarkParticles some = emit_bark(fewer, o, 9);
+    // Every stroke of `some` is one of `all`, and `all` has strokes only `some` lacks.
+    std::vector<glm::vec3> a = all.position, b = some.position;
+    auto less = [](const glm::vec3& p, const glm::vec3& q) {
+        return std::tie(p.x, p.y, p.z) < std::tie(q.x, q.y, q.z);
+    };
+    std::sort(a.begin(), a.end(), less);
+    std::sort(b.begin(), b.end(), less);
+    EXPECT_TRUE(std::includes(a.begin(), a.end(), b.begin(), b.end(), less));
+    EXPECT_LT(b.size(), a.size());
 }
 
 TEST(Bark, ARenderMeshThatIsNotTheControlSubdividedIsRejected) {

@@ -67,6 +67,38 @@ TEST(CatmullClark, DerivedConnectivityEqualsLevelByLevel) {
     EXPECT_EQ(c.euler, 2);
 }
 
+// Face f's pieces after L levels are faces f * 4^L .. (f + 1) * 4^L - 1: the first starts at
+// f's first corner (old vertices keep their indices), and every piece's centroid lies nearer
+// f's centroid than any other control face's does, on a tree's control mesh.
+TEST(CatmullClark, FaceFsPiecesAreTheBlockAtFTimesFourToTheL) {
+    const QuadMesh control = generate_tree(test::preset("oak"), 3).control;
+    const int levels = 2;
+    const QuadMesh render = catmull_clark(control, levels);
+    const size_t per = size_t{1} << (2 * levels);
+    ASSERT_EQ(render.quads.size(), control.quads.size() * per);
+    auto centroid = [](const QuadMesh& m, size_t f) {
+        glm::vec3 c(0.0f);
+        for (int k = 0; k < 4; ++k) c += 0.25f * m.positions[m.quads[f][k]];
+        return c;
+    };
+    std::vector<glm::vec3> centres(control.quads.size());
+    for (size_t f = 0; f < control.quads.size(); ++f) centres[f] = centroid(control, f);
+    size_t nearest_own = 0;
+    for (size_t f = 0; f < control.quads.size(); ++f) {
+        ASSERT_EQ(render.quads[f * per][0], control.quads[f][0]) << f;
+        for (size_t k = 0; k < per; ++k) {
+            const glm::vec3 c = centroid(render, f * per + k);
+            size_t best = 0;
+            for (size_t g = 1; g < centres.size(); ++g)
+                if (glm::length(c - centres[g]) < glm::length(c - centres[best])) best = g;
+            nearest_own += best == f;
+        }
+    }
+    // Pieces at a face's corners can sit nearer a small neighbour (76% are nearest their own
+    // here); a wrong block would leave almost none.
+    EXPECT_GT(nearest_own, render.quads.size() * 2 / 3);
+}
+
 TEST(CatmullClark, AgreesWithOpenMeshCatmullClark) {
     using OmMesh = OpenMesh::PolyMesh_ArrayKernelT<>;
     QuadMesh control = generate_tree(test::preset("willow"), 5).control;

@@ -38,6 +38,12 @@ void expect_valid(const Tree& t, const std::string& what) {
     std::vector<int> owners(t.control.quads.size(), 0);
     for (const BranchInfo& b : t.branches) {
         ASSERT_EQ(b.faces.size(), b.face_segments.size()) << what;
+        ASSERT_EQ(b.faces.size(), b.face_slots.size()) << what;
+        // Slots name a face's place on its limb: distinct, in order.
+        EXPECT_TRUE(std::adjacent_find(b.face_slots.begin(), b.face_slots.end(),
+                                       [](uint32_t x, uint32_t y) { return x >= y; }) ==
+                    b.face_slots.end())
+            << what;
         for (size_t k = 0; k < b.faces.size(); ++k) {
             ASSERT_LT(b.faces[k], owners.size()) << what;
             ++owners[b.faces[k]];
@@ -46,6 +52,11 @@ void expect_valid(const Tree& t, const std::string& what) {
     }
     EXPECT_EQ(std::count(owners.begin(), owners.end(), 1), static_cast<long>(owners.size()))
         << what;
+    // The only face no limb records itself is the trunk's base, its first face.
+    const BranchInfo& trunk = t.branches[0];
+    ASSERT_GE(trunk.faces.size(), 2u) << what;
+    EXPECT_EQ(trunk.faces.back(), 0u) << what;
+    EXPECT_EQ(trunk.face_slots.back(), trunk.face_slots[trunk.faces.size() - 2] + 1) << what;
     EXPECT_EQ(t.render.quads.size(), t.control.quads.size() << (2 * t.render_levels)) << what;
 }
 

@@ -59,6 +59,23 @@ TEST(Paint, SameBytesOnOneAndTwoThreads) {
     expect_finite(one);
 }
 
+// The instance transform the ray scenes use places a point exactly where the painter does.
+TEST(Paint, TreePlacementsLinearPartMatchesPlace) {
+    BuiltTree b;
+    b.position = {1e4, 3, -2e4};
+    b.rotation = 37;
+    b.scale = 1.7;
+    const TreePlacement pl = placement(b);
+    for (const glm::vec3 p : {glm::vec3(1, 0, 0), glm::vec3(0.3f, 4, -2), glm::vec3(-5, 1, 7)}) {
+        const glm::dvec3 want = pl.place(p), got = pl.position + pl.linear() * glm::dvec3(p);
+        EXPECT_NEAR(glm::length(want - got), 0.0, 1e-9) << p.x;
+    }
+    // A turn of 37 degrees about +y and a scale of 1.7: +x goes to (cos, 0, -sin) * 1.7.
+    const glm::dvec3 x = pl.linear() * glm::dvec3(1, 0, 0);
+    EXPECT_NEAR(x.x, 1.7 * std::cos(37 * M_PI / 180), 1e-12);
+    EXPECT_NEAR(x.z, -1.7 * std::sin(37 * M_PI / 180), 1e-12);
+}
+
 TEST(Paint, StrokesCoverTheTreesAndAovsNameThem) {
     SceneDesc s = parse_scene(scene_text(kCamera, kTrees), "test");
     FrameReport rep;

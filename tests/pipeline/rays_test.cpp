@@ -93,6 +93,32 @@ TEST(Rays, InstancesAnswerLikeTheMeshCopiedIntoPlace) {
         EXPECT_NEAR(glm::length(h.normal), 1.0f, 1e-4f) << k;
         EXPECT_GT(h.normal.y, 0.5f) << k;  // the rock's top faces up
     }
+    // A squashed, turned placement: normals go through the inverse transpose, not the matrix.
+    const glm::dmat3 squash =
+        linear * glm::dmat3(glm::dvec3(1, 0, 0), glm::dvec3(0, 0.3, 0), glm::dvec3(0, 0, 2.5));
+    QuadMesh flat = rock;
+    for (auto& p : flat.positions) p = glm::vec3(squash * glm::dvec3(p));
+    RayScene copied2(anchor), instanced2(anchor, &shared);
+    copied2.add_mesh(flat, where);
+    instanced2.add_instance(m, squash, where);
+    copied2.commit();
+    instanced2.commit();
+    int squashed_hits = 0;
+    for (int i = 0; i < 200; ++i) {
+        // From all round, slanting: the sides, where squashing turns the normals most.
+        const double az = rand_range(rng, 0, 2 * M_PI);
+        const glm::dvec3 o =
+            where + glm::dvec3(8 * std::cos(az), rand_range(rng, -2, 2), 8 * std::sin(az));
+        const glm::vec3 d = glm::normalize(
+            glm::vec3(where - o) +
+            glm::vec3(rand_range(rng, -1, 1), rand_range(rng, -1, 1), rand_range(rng, -1, 1)));
+        const RayHit a = copied2.intersect(o, d), b = instanced2.intersect(o, d);
+        ASSERT_EQ(a.hit, b.hit) << i;
+        if (!a.hit || a.primitive != b.primitive) continue;
+        EXPECT_GT(glm::dot(a.normal, b.normal), 0.999f) << i;
+        ++squashed_hits;
+    }
+    EXPECT_GT(squashed_hits, 50);
     EXPECT_THROW(instanced.add_instance(5, linear, where), std::invalid_argument);
     RayScene alone;
     EXPECT_THROW(alone.add_instance(0, linear, where), std::invalid_argument);
