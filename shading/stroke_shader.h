@@ -217,11 +217,6 @@ inline float stroke_filter_width(const StrokeConstants& k, float half_w_px, floa
     return std::min(0.3f * g / static_cast<float>(std::max(samples_per_axis, 1)), 0.5f);
 }
 
-// Noise of the stroke mask at sprite coordinates (s, t).
-inline float stroke_noise(const StrokeConstants& k, float s, float t, int octaves) {
-    return fractal_noise(s * k.frequ_s + k.offset_s, t * k.frequ_t + k.offset_t, octaves);
-}
-
 // What the stroke mask's noise reads of StrokeConstants, for whoever keeps many strokes around
 // (shadow casters) and needs no colour.
 struct StrokeNoise {
@@ -233,9 +228,13 @@ inline StrokeNoise noise_of(const StrokeConstants& k) {
     return {k.frequ_s, k.frequ_t, k.offset_s, k.offset_t};
 }
 
-// stroke_noise of the StrokeConstants the key came from, bit for bit.
+// Noise of the stroke mask at sprite coordinates (s, t).
 inline float stroke_noise(const StrokeNoise& n, float s, float t, int octaves) {
     return fractal_noise(s * n.frequ_s + n.offset_s, t * n.frequ_t + n.offset_t, octaves);
+}
+
+inline float stroke_noise(const StrokeConstants& k, float s, float t, int octaves) {
+    return stroke_noise(noise_of(k), s, t, octaves);
 }
 
 // Tint, then atmospheric perspective: what happens to a palette colour after the lookup.
