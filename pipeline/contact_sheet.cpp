@@ -72,9 +72,10 @@ Frame paint_contact_sheet(const Family& family, const std::vector<Tree>& trees,
 
     SceneDesc scene;
     scene.families = {family};
+    scene.build = o.build;
     scene.render = o.render;
     scene.has_atmosphere = false;
-    FramePlan plan = plan_frame(scene, {});
+    const bool bark = o.build.bark_coverage > 0;
     // Cells are independent: painted in parallel (each also parallel inside), each into its own
     // part of the sheet, so the bytes do not depend on threads.
     std::vector<FrameReport> reports(trees.size());
@@ -83,12 +84,12 @@ Frame paint_contact_sheet(const Family& family, const std::vector<Tree>& trees,
         BuiltTree b;
         b.tree = trees[i];
         b.position = b.tree.origin;
-        if (plan.bark) {
+        if (bark) {
             BarkOptions bo;
             bo.stroke_width =
                 static_cast<float>(family.bark_shader.sprite_size * family.params.unit);
             bo.stroke_length = bo.stroke_width * family.bark_shader.stroke_aspect;
-            bo.coverage = o.render.bark_coverage;
+            bo.coverage = o.build.bark_coverage;
             b.bark = emit_bark(b.tree, bo, b.tree.seed);
         }
         std::vector<glm::vec3> pts = b.tree.render.positions;
@@ -111,7 +112,12 @@ Frame paint_contact_sheet(const Family& family, const std::vector<Tree>& trees,
         cp.height = cell_h;
         make_camera(cp, scene_i.camera);
         scene_i.camera_params = cp;
-        Frame cell = paint_frame(scene_i, {b}, plan, &reports[i]);
+        // The cell's camera frames its tree, so each cell is a shot of its own.
+        const Shot shot =
+            build_shot(std::move(scene_i), std::make_shared<const std::vector<BuiltTree>>(1, b),
+                       std::make_shared<const BuiltLandscape>());
+        Frame cell = paint_frame(shot, still_view(shot.scene), scene_frame_settings(shot.scene),
+                                 &reports[i]);
         const int cx = o.gap + static_cast<int>(i % cols) * (cell_w + o.gap);
         const int cy = o.gap + static_cast<int>(i / cols) * (cell_h + o.gap);
         for (int y = 0; y < cell_h; ++y)

@@ -13,6 +13,7 @@ struct SheetOptions {
     int width = 1920;
     int height = 1080;
     int gap = 6;  // pixels of canvas between cells
+    BuildSettings build;
     RenderSettings render;
 };
 

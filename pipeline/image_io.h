@@ -6,7 +6,10 @@
 #include <filesystem>
 #include <string>
 
-#include "pipeline/paint.h"
+#include <cstdint>
+#include <vector>
+
+#include "pipeline/frame.h"
 
 namespace pleinair {
 

@@ -77,6 +77,28 @@ inline size_t edit_distance(const std::string& a, const std::string& b) {
 }
 
 // Reads the keys the table asks for; what the table never asked for is an unknown key.
+// The names a JSON string may take for an enum, in the order the reference lists them.
+template <class E>
+using Choices = std::vector<std::pair<const char*, E>>;
+
+template <class E>
+std::string describe_choices(const Choices<E>& names) {
+    std::string out;
+    for (size_t i = 0; i < names.size(); ++i)
+        out.append(i == 0 ? "" : i + 1 == names.size() ? " or " : ", ")
+            .append("\"")
+            .append(names[i].first)
+            .append("\"");
+    return out;
+}
+
+template <class E>
+const char* choice_name(E x, const Choices<E>& names) {
+    for (const auto& [name, value] : names)
+        if (value == x) return name;
+    return "";
+}
+
 class Reader {
   public:
     // `prefix` is the JSON pointer of `root` in its file, for objects inside arrays.
@@ -197,6 +219,19 @@ class Reader {
         if (!v->is_string()) return fail(key, "expected a string, got " + describe(*v));
         x = v->get<std::string>();
     }
+    // One of a few named values, parsed once into its enum.
+    template <class E>
+    void choice(const char* key, E& x, const Choices<E>& names, const char*) {
+        const json* v = find(key);
+        if (!v) return;
+        if (v->is_string())
+            for (const auto& [name, value] : names)
+                if (v->get<std::string>() == name) {
+                    x = value;
+                    return;
+                }
+        fail(key, "expected " + describe_choices(names) + ", got " + describe(*v));
+    }
 
   private:
     struct Frame {
@@ -263,6 +298,10 @@ class Writer {
     void seed(const char* key, uint64_t x, const char*) { (*stack_.back())[key] = x; }
     void claim(const char*) {}
     void text(const char* key, const std::string& x, const char*) { (*stack_.back())[key] = x; }
+    template <class E>
+    void choice(const char* key, E x, const Choices<E>& names, const char*) {
+        (*stack_.back())[key] = choice_name(x, names);
+    }
     void real(const char* key, float x, Range, const char*, const char*) {
         (*stack_.back())[key] = x;
     }
@@ -316,6 +355,11 @@ class Documenter {
     }
     void text(const char* key, const std::string& x, const char* doc) {
         row(here() + "/" + key, json(x).dump(), "", "", doc);
+    }
+    template <class E>
+    void choice(const char* key, E x, const Choices<E>& names, const char* doc) {
+        row(here() + "/" + key, json(choice_name(x, names)).dump(), describe_choices(names), "",
+            doc);
     }
     void real(const char* key, float x, Range r, const char* unit, const char* doc) {
         row(here() + "/" + key, format_number(x), format_range(r.lo, r.hi), unit, doc);

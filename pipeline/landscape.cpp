@@ -84,7 +84,7 @@ uint32_t terrain_material_at(const SceneDesc& s, const glm::dvec3& world) {
 
 BuiltLandscape build_landscape(const SceneDesc& s) {
     BuiltLandscape out;
-    const float density = s.render.surface_density;
+    const float density = s.build.surface_density;
     if (!s.terrain.present) return out;
     const TerrainDesc& t = s.terrain;
     out.has_terrain = true;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "generators/quad_mesh.h"
+#include "pipeline/settings.h"
 #include "shading/stroke_shader.h"
 
 namespace pleinair {
@@ -54,9 +55,6 @@ struct StrokeCaster {
     StrokeNoise noise;                   // noise frequencies and offsets of the stroke
 };
 
-// How a shadow ray treats stroke casters: the opacity of the first card decides (above one
-// half: shadow), or the light is attenuated by every card it crosses.
-enum class ShadowMode { kThreshold, kTransmissive };
 
 // Meshes several RayScenes share (each tree's limbs, in the camera's scene and the sun's),
 // each kept in its own space and built once; scenes place them as instances. A scene holds

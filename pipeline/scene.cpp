@@ -113,6 +113,11 @@ void visit_group(TreeGroup& g, V& v) {
     v.integer("max_trees", p.max_trees, {0, 100000}, "At most this many trees.");
 }
 
+const Choices<ShadowMode> kShadowModes = {{"transmissive", ShadowMode::kTransmissive},
+                                          {"threshold", ShadowMode::kThreshold}};
+const Choices<ShadowSamples> kShadowSamples = {{"particle", ShadowSamples::kParticle},
+                                              {"fragment", ShadowSamples::kFragment}};
+
 template <class V>
 void visit_scene(SceneDesc& s, V& v) {
     v.text("description", s.description, "One line on what the scene shows.");
@@ -181,19 +186,19 @@ void visit_scene(SceneDesc& s, V& v) {
                   "in noise space (RenderMan's filterwidth) against aliasing.");
         v.boolean("edge_lut", r.edge_lut,
                   "Read the stroke edge mask from a 256-entry table instead of sin and pow.");
-        v.real("bark_coverage", r.bark_coverage, {0, 100}, "",
+        v.real("bark_coverage", s.build.bark_coverage, {0, 100}, "",
                "Bark strokes' total area over the area of the limbs' render mesh.");
-        v.text("shadows", r.shadows,
+        v.choice("shadows", r.shadows, kShadowModes,
                "How leaf strokes shadow: \"transmissive\" (light dimmed by every stroke crossed) "
                "or \"threshold\" (a stroke blocks where its mask is over one half).");
-        v.text("shadow_samples", r.shadow_samples,
+        v.choice("shadow_samples", r.shadow_samples, kShadowSamples,
                "Where shadow rays start: \"particle\" (one per particle, the whole stroke shares "
                "it) or \"fragment\" (a 4 x 4 grid over each sprite, interpolated per fragment, "
                "16 times the rays; colours then come from the palette per fragment).");
         v.real("underpaint_scale", r.underpaint_scale, {0.05, 1}, "",
                "Resolution of the underpainting (flat colour under the strokes) over the "
                "image's.");
-        v.real("surface_density", r.surface_density, {0.05, 16}, "",
+        v.real("surface_density", s.build.surface_density, {0.05, 16}, "",
                "Surface particles per cluster, relative to the scene's; sprites shrink so the "
                "covered area stays the same.");
     });
@@ -544,14 +549,6 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
             s.trees.push_back(placed);
         }
     }
-    if (s.render.shadows != "transmissive" && s.render.shadows != "threshold")
-        problems.push_back(
-            {"/render/shadows",
-             "expected \"transmissive\" or \"threshold\", got \"" + s.render.shadows + "\""});
-    if (s.render.shadow_samples != "particle" && s.render.shadow_samples != "fragment")
-        problems.push_back(
-            {"/render/shadow_samples",
-             "expected \"particle\" or \"fragment\", got \"" + s.render.shadow_samples + "\""});
     parse_groups(doc, s, problems, plain);
     mark_overrides(problems, overridden);
     if (!problems.empty()) throw InputError(source, problems);

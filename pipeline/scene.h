@@ -13,6 +13,7 @@
 #include "generators/terrain.h"
 #include "generators/tree_params.h"
 #include "pipeline/camera.h"
+#include "pipeline/settings.h"
 #include "shading/color.h"
 #include "shading/stroke_shader.h"
 #include "shading/surface_shader.h"
@@ -36,22 +37,6 @@ struct Background {
 struct Atmosphere {
     float near_distance = 10;
     float far_distance = 200;
-};
-
-// Quality and style settings of the painter: what accuracy costs is measured over these.
-struct RenderSettings {
-    float stroke_perspective = 0.6f;  // 0: strokes keep their screen size, 1: true perspective
-    float min_stroke_px = 1.5f;       // no stroke is drawn smaller
-    int samples = 4;                  // stroke-mask samples per pixel: 1, 4 or 16
-    int octaves = 1;                  // stroke-noise octaves
-    bool palette_lut = true;          // colours from a per-sprite table instead of per fragment
-    bool edge_lut = true;             // the edge mask from a table instead of sin and pow
-    bool filter_strokes = true;       // at 1 sample per pixel, widen the feather by its footprint
-    float bark_coverage = 2.5f;       // bark strokes' area over the limbs' area
-    std::string shadows = "transmissive";     // "threshold": a card blocks where its mask > 1/2
-    std::string shadow_samples = "particle";  // "fragment": a 4 x 4 grid of rays per sprite
-    float underpaint_scale = 0.5f;            // underpainting resolution over the image's
-    float surface_density = 1.0f;             // surface particles per cluster, relative
 };
 
 // A named look for surface strokes (grass, dirt, rock, water): a stroke shader with IV.7's
@@ -139,6 +124,7 @@ struct SceneDesc {
     Background background;
     bool has_atmosphere = false;
     Atmosphere atmosphere;
+    BuildSettings build;
     RenderSettings render;
     std::vector<Family> families;
     std::vector<PlacedTree> trees;  // explicit trees, then the groups' scattered ones

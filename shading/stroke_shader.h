@@ -4,6 +4,8 @@
 #pragma once
 
 #include <array>
+#include <cmath>
+#include <cstring>
 #include <cstdint>
 
 #include "shading/color.h"
@@ -152,6 +154,24 @@ inline float tree_hash01(uint32_t id) {
     h *= 0x85EBCA6Bu;
     h ^= h >> 13;
     return static_cast<float>(h >> 8) * (1.0f / 16777216.0f);
+}
+
+// A 0..1 value from a label, for size and angle jitter that differ from the noise offsets.
+inline float label_hash(float label, uint32_t salt) {
+    uint32_t bits;
+    static_assert(sizeof bits == sizeof label);
+    std::memcpy(&bits, &label, sizeof bits);
+    return tree_hash01(bits ^ (salt * 0x27d4eb2fu));
+}
+
+// A stroke's size factor drawn from its label: its sprite and its shadow caster share it.
+inline float stroke_size_jitter(const StrokeShaderParams& p, float label) {
+    return 1.0f + p.size_jitter * (2.0f * label_hash(label, 1) - 1.0f);
+}
+
+// A stroke's turn in radians drawn from its label: its sprite and its shadow caster share it.
+inline double stroke_angle_jitter(const StrokeShaderParams& p, float label) {
+    return (label_hash(label, 2) - 0.5) * p.angle_jitter * M_PI / 180.0;
 }
 
 // Everything of a stroke that is constant over its sprite, computed once per sprite.

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <memory>
 
 #include "pipeline/cli/commands.h"
 #include "pipeline/image_io.h"
@@ -20,17 +21,20 @@ struct Timed {
     double ms = 0;  // median over the repeats, of the whole paint (sprites to composite)
 };
 
-Timed timed_paint(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
-                  const BuiltLandscape& land, int repeat) {
-    FramePlan plan = plan_frame(scene, {});
+using SharedTrees = std::shared_ptr<const std::vector<BuiltTree>>;
+using SharedLand = std::shared_ptr<const BuiltLandscape>;
+
+// The time of what depends on the settings: the shot's ray scenes (the trees and the landscape
+// are shared) and the frame.
+Timed timed_paint(const SceneDesc& scene, const SharedTrees& trees, const SharedLand& land,
+                  int repeat) {
     std::vector<double> ms;
     Timed out;
     for (int i = 0; i < repeat; ++i) {
-        auto t0 = std::chrono::steady_clock::now();
-        out.frame = paint_frame(scene, trees, land, plan);
-        ms.push_back(
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                .count());
+        PassTimer t;
+        const Shot shot = build_shot(scene, trees, land);
+        out.frame = paint_frame(shot, still_view(shot.scene), scene_frame_settings(shot.scene));
+        ms.push_back(t.ms());
     }
     std::sort(ms.begin(), ms.end());
     out.ms = ms[ms.size() / 2];
@@ -41,7 +45,8 @@ Timed timed_paint(const SceneDesc& scene, const std::vector<BuiltTree>& trees,
 
 int run_bench_accuracy(const BenchCommand& cmd) {
     SceneDesc scene = load_scene(resolve_preset("scenes", cmd.scene, "SCENE"), cmd.set);
-    std::vector<BuiltTree> trees = build_trees(scene, scene.render.bark_coverage > 0);
+    const SharedTrees trees = std::make_shared<const std::vector<BuiltTree>>(
+        build_trees(scene, scene.build.bark_coverage > 0));
     const bool landscape = scene.terrain.present || !scene.rocks.empty();
 
     // The reference: every setting at its most accurate (for a landscape: shadows through
@@ -53,11 +58,11 @@ int run_bench_accuracy(const BenchCommand& cmd) {
     ref.render.palette_lut = false;
     ref.render.edge_lut = false;
     ref.render.filter_strokes = false;
-    ref.render.shadows = "transmissive";
-    ref.render.shadow_samples = "fragment";
+    ref.render.shadows = ShadowMode::kTransmissive;
+    ref.render.shadow_samples = ShadowSamples::kFragment;
     ref.render.underpaint_scale = 1.0f;
-    ref.render.surface_density = 4.0f;
-    const BuiltLandscape ref_land = build_landscape(ref);
+    ref.build.surface_density = 4.0f;
+    const SharedLand ref_land = std::make_shared<const BuiltLandscape>(build_landscape(ref));
     Timed reference = timed_paint(ref, trees, ref_land, 1);
 
     struct Row {
@@ -81,12 +86,13 @@ int run_bench_accuracy(const BenchCommand& cmd) {
     if (scene.sun_casts_shadows) {
         rows.push_back({"shadows", "none", [](SceneDesc& s) { s.sun_casts_shadows = false; }});
         rows.push_back({"shadows", "per particle, threshold at 1/2", [](SceneDesc& s) {
-                            s.render.shadows = "threshold", s.render.shadow_samples = "particle";
+                            s.render.shadows = ShadowMode::kThreshold;
+                            s.render.shadow_samples = ShadowSamples::kParticle;
                         }});
         rows.push_back({"shadows", "per particle, transmissive",
-                        [](SceneDesc& s) { s.render.shadow_samples = "particle"; }});
+                        [](SceneDesc& s) { s.render.shadow_samples = ShadowSamples::kParticle; }});
         rows.push_back({"shadows", "per fragment (4 x 4 rays a sprite), transmissive",
-                        [](SceneDesc& s) { s.render.shadow_samples = "fragment"; }});
+                        [](SceneDesc& s) { s.render.shadow_samples = ShadowSamples::kFragment; }});
     }
     if (landscape) {
         for (float u : {1.0f, 0.5f, 0.25f})
@@ -96,7 +102,7 @@ int run_bench_accuracy(const BenchCommand& cmd) {
             char label[48];
             std::snprintf(label, sizeof label, "%.2gx the scene's", d);
             rows.push_back(
-                {"surface density", label, [d](SceneDesc& s) { s.render.surface_density = d; }});
+                {"surface density", label, [d](SceneDesc& s) { s.build.surface_density = d; }});
         }
     }
     std::printf(
@@ -112,9 +118,10 @@ int run_bench_accuracy(const BenchCommand& cmd) {
     for (const Row& row : rows) {
         SceneDesc s = ref;
         row.set(s);
-        const bool rebuild = s.render.surface_density != ref.render.surface_density;
-        const BuiltLandscape land = rebuild ? build_landscape(s) : BuiltLandscape{};
-        Timed t = timed_paint(s, trees, rebuild ? land : ref_land, cmd.repeat);
+        const bool rebuild = s.build.surface_density != ref.build.surface_density;
+        const SharedLand land =
+            rebuild ? std::make_shared<const BuiltLandscape>(build_landscape(s)) : ref_land;
+        Timed t = timed_paint(s, trees, land, cmd.repeat);
         ImageError e = compare_frames(t.frame, reference.frame);
         char psnr[32];
         if (std::isfinite(e.psnr))
@@ -125,7 +132,8 @@ int run_bench_accuracy(const BenchCommand& cmd) {
                     t.ms, e.rmse, psnr);
     }
     SceneDesc def = scene;
-    Timed t = timed_paint(def, trees, build_landscape(def), cmd.repeat);
+    Timed t = timed_paint(def, trees, std::make_shared<const BuiltLandscape>(build_landscape(def)),
+                          cmd.repeat);
     ImageError e = compare_frames(t.frame, reference.frame);
     std::printf(
         "| scene's settings | %d spp, %d octave(s), palette %s, edge %s | %.0f | %.5f | %.1f |\n",

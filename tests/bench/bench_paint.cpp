@@ -12,12 +12,11 @@ using namespace pleinair;
 namespace {
 
 struct Fixture {
-    SceneDesc scene;
-    std::vector<BuiltTree> trees;
+    Shot shot;
     Fixture() {
-        scene = load_scene(resolve_preset("scenes", "grove", "bench"));
+        SceneDesc scene = load_scene(resolve_preset("scenes", "grove", "bench"));
         scene.render.samples = 1;  // one fragment per covered pixel, for both kernels
-        trees = build_trees(scene, true);
+        shot = build_shot(std::move(scene));
     }
 };
 
@@ -27,16 +26,16 @@ const Fixture& fixture() {
 }
 
 void paint_pass(benchmark::State& state, bool bare, bool exact) {
-    Fixture f = fixture();
-    f.scene.render.palette_lut = f.scene.render.edge_lut = !exact;
-    FramePlan plan = plan_frame(f.scene, {});
-    plan.bare_blend = bare;
+    const Shot& shot = fixture().shot;
+    FrameSettings settings = scene_frame_settings(shot.scene);
+    settings.render.palette_lut = settings.render.edge_lut = !exact;
+    settings.bare_blend = bare;
     tbb::task_arena one(1);
     double ms = 0;
     uint64_t fragments = 0;
     for (auto _ : state) {
         FrameReport rep;
-        one.execute([&] { benchmark::DoNotOptimize(paint_frame(f.scene, f.trees, plan, &rep)); });
+        one.execute([&] { benchmark::DoNotOptimize(paint_frame(shot, still_view(shot.scene), settings, &rep)); });
         double paint_ms = 0;
         for (const auto& p : rep.passes)
             if (p.name == "paint") paint_ms = p.ms;

@@ -53,10 +53,7 @@ std::string landscape(const std::string& sun, double o = 0, const std::string& e
 
 const char* kSun = R"({"direction": [-0.5, 0.6, 0.4], "casts_shadows": true})";
 
-Frame paint(const SceneDesc& s, FrameReport* rep = nullptr) {
-    FramePlan plan = plan_frame(s, {});
-    return paint_frame(s, build_trees(s, plan.bark), build_landscape(s), plan, rep);
-}
+Frame paint(const SceneDesc& s, FrameReport* rep = nullptr) { return paint_still(s, false, rep); }
 
 void expect_finite(const Frame& f) {
     for (float v : f.rgba) {
@@ -122,17 +119,18 @@ TEST(Landscape, ShadowSceneOnlyWhenTheSunCastsShadows) {
     FrameReport with, without, trees_only;
     SceneDesc lit = parse_scene(landscape(kSun), "test");
     Frame a = paint(lit, &with);
-    EXPECT_TRUE(with.sun_scene);
+    EXPECT_TRUE(build_shot(lit).sun_rays);
     EXPECT_GT(with.shadow_rays, 0u);
-    EXPECT_TRUE(with.view_scene);
+    EXPECT_TRUE(build_shot(lit).view_rays);
     EXPECT_GT(with.underpaint_rays, 0u);
 
     SceneDesc flat = parse_scene(landscape(R"({"direction": [-0.5, 0.6, 0.4]})"), "test");
-    EXPECT_FALSE(plan_frame(flat, {}).shadows);
+    const Shot flat_shot = build_shot(flat);
+    EXPECT_FALSE(plan_frame(flat_shot, scene_frame_settings(flat)).shadows);
     Frame b = paint(flat, &without);
-    EXPECT_FALSE(without.sun_scene);
+    EXPECT_FALSE(flat_shot.sun_rays);
     EXPECT_EQ(without.shadow_rays, 0u);
-    EXPECT_TRUE(without.view_scene);
+    EXPECT_TRUE(flat_shot.view_rays);
     // The shadows did something: the pictures differ and the lit one is darker somewhere.
     EXPECT_NE(frame_srgb8(a), frame_srgb8(b));
 
@@ -141,12 +139,14 @@ TEST(Landscape, ShadowSceneOnlyWhenTheSunCastsShadows) {
         "width": 64, "height": 48}, "families": {"oak": {"preset": "oak"}},
         "trees": [{"family": "oak", "seed": 1}]})",
                               "test");
-    FramePlan plan = plan_frame(t, {});
+    const Shot trees_shot = build_shot(t);
+    FramePlan plan = plan_frame(trees_shot, scene_frame_settings(t));
     EXPECT_FALSE(plan.underpaint);
     EXPECT_FALSE(plan.shadows);
     paint(t, &trees_only);
-    EXPECT_FALSE(trees_only.view_scene);
-    EXPECT_FALSE(trees_only.sun_scene);
+    EXPECT_FALSE(trees_shot.view_rays);
+    EXPECT_FALSE(trees_shot.sun_rays);
+    EXPECT_FALSE(trees_shot.limbs);  // no Embree device at all
     EXPECT_EQ(trees_only.underpaint_rays, 0u);
 }
 
@@ -155,7 +155,7 @@ TEST(Landscape, ShadowsPerFragmentTraceAGridPerSprite) {
     SceneDesc s = parse_scene(landscape(kSun), "test");
     FrameReport particle, fragment;
     Frame a = paint(s, &particle);
-    s.render.shadow_samples = "fragment";
+    s.render.shadow_samples = ShadowSamples::kFragment;
     Frame b = paint(s, &fragment);
     const uint64_t sprites =
         fragment.leaf_sprites + fragment.bark_sprites + fragment.surface_sprites;

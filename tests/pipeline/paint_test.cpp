@@ -13,6 +13,7 @@
 #include <limits>
 
 #include "pipeline/image_io.h"
+#include "pipeline/sprites.h"
 #include "test_util.h"
 
 namespace pleinair {
@@ -41,11 +42,10 @@ void expect_finite(const Frame& f) {
 }
 
 Frame paint(const SceneDesc& s, bool aovs = false, FrameReport* rep = nullptr) {
-    PaintOptions o;
-    o.aovs = aovs;
-    FramePlan plan = plan_frame(s, o);
-    return paint_frame(s, build_trees(s, plan.bark), plan, rep);
+    return paint_still(s, aovs, rep);
 }
+
+FramePlan plan_of(const SceneDesc& s) { return plan_frame(build_shot(s), scene_frame_settings(s)); }
 
 TEST(Paint, SameBytesOnOneAndTwoThreads) {
     SceneDesc s = parse_scene(scene_text(kCamera, kTrees), "test");
@@ -103,20 +103,20 @@ TEST(Paint, StrokesCoverTheTreesAndAovsNameThem) {
 
 TEST(Paint, PlanSkipsWhatTheSceneDoesNotNeed) {
     SceneDesc s = parse_scene(scene_text(kCamera, kTrees), "test");
-    FramePlan plan = plan_frame(s, {});
+    FramePlan plan = plan_of(s);
     EXPECT_TRUE(plan.atmosphere);
     EXPECT_TRUE(plan.tint);  // corot-leaves has unique_tint_amt 0.02
     EXPECT_FALSE(plan.aovs);
     for (auto& f : s.families) f.leaf_shader.unique_tint_amt = f.bark_shader.unique_tint_amt = 0;
     s.has_atmosphere = false;
-    s.render.bark_coverage = 0;
-    plan = plan_frame(s, {});
+    s.build.bark_coverage = 0;
+    plan = plan_of(s);
     EXPECT_FALSE(plan.tint);
     EXPECT_FALSE(plan.atmosphere);
     EXPECT_FALSE(plan.bark);
     int skipped = 0;
     for (const auto& d : plan.decisions) skipped += !d.ran;
-    EXPECT_EQ(skipped, 6);  // bark, tint, atmosphere, aovs, shadows, underpaint
+    EXPECT_EQ(skipped, 7);  // bark, tint, atmosphere, aovs, shadows, underpaint, level of detail
     // With no tint and no atmosphere the picture changes (they did something before).
     SceneDesc full = parse_scene(scene_text(kCamera, kTrees), "test");
     EXPECT_NE(frame_srgb8(paint(full)), frame_srgb8(paint(s)));
@@ -144,9 +144,7 @@ BuiltTree hand_tree(const std::vector<glm::vec3>& points, glm::vec3 normal = {0,
 }
 
 Frame paint_hand(const SceneDesc& s, std::vector<BuiltTree> trees, FrameReport* rep = nullptr) {
-    PaintOptions o;
-    o.aovs = true;
-    return paint_frame(s, trees, plan_frame(s, o), rep);
+    return paint_still(s, std::move(trees), true, rep);
 }
 
 // stroke_perspective: 1 is true perspective (size halves when depth doubles), 0 keeps the
@@ -169,8 +167,8 @@ TEST(Paint, StrokesShrinkLessThanGeometry) {
     far.render.min_stroke_px = 6;
     far.render.samples = 16;
     BuiltTree t = hand_tree({{0, 7, -4000}});
-    Frame fr = paint_frame(far, {t}, plan_frame(far, {}));
-    std::vector<uint8_t> bg = frame_srgb8(paint_frame(far, {}, plan_frame(far, {})));
+    Frame fr = paint_still(far, {t});
+    std::vector<uint8_t> bg = frame_srgb8(paint_still(far, std::vector<BuiltTree>{}));
     std::vector<uint8_t> px = frame_srgb8(fr);
     size_t changed = 0;
     for (size_t i = 0; i < px.size(); i += 3) changed += px[i] != bg[i] || px[i + 1] != bg[i + 1];

@@ -1,0 +1,322 @@
+// The frame's background and its strokes: each tile composites its sprites back to front with
+// the stroke kernel (vector rows when the sprite's colours come from its ramp, scalar samples
+// when they vary per fragment), tiles in parallel.
+#include "pipeline/composite.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "pipeline/shot.h"
+#include "shading/stroke_kernel.h"
+
+namespace pleinair {
+
+namespace {
+
+Color background_color(const Background& b, const Camera& cam, const Color lin[4], double x,
+                       double y) {
+    glm::dvec3 dir = ray_direction(cam, x, y);
+    float e = static_cast<float>(dir.y);
+    Color c;
+    if (b.canvas) {
+        c = lin[0];
+    } else {
+        Color sky = mix(lin[1], lin[0], smoothstep(0.0f, 0.6f, e));
+        Color ground = mix(lin[2], lin[3], smoothstep(0.0f, 0.5f, -e));
+        c = mix(ground, sky, smoothstep(-b.horizon_softness, b.horizon_softness, e));
+    }
+    if (b.texture > 0) {
+        // Attached to the view direction, so it does not swim when the camera moves.
+        float az = static_cast<float>(std::atan2(dir.x, -dir.z));
+        float n = fractal_noise(az * 9.0f + 50.0f, e * 9.0f + 50.0f, 3);
+        c *= 1.0f + 2.0f * b.texture * (n - 0.5f);
+    }
+    return c;
+}
+
+// The pixels of row y that may hold a sample inside the sprite, given s and t's screen
+// gradients: each of 0 < s < 1 and 0 < t < 1 is a slab in x, widened by half a pixel in x and
+// y for the sub-pixel samples. Narrows [xa, xb]; false when the row misses the sprite.
+bool row_span(const Sprite& sp, float sx, float sy, float txx, float tyy, int y, int& xa, int& xb) {
+    const float dy = static_cast<float>(y) + 0.5f - sp.y;
+    float lo = -std::numeric_limits<float>::infinity(), hi = -lo;
+    auto slab = [&](float gx, float gy) {
+        const float c0 = 0.5f + dy * gy, slack = 0.5f * (std::abs(gx) + std::abs(gy));
+        const float a = -slack - c0, b = 1.0f + slack - c0;  // gx * dx must lie in (a, b)
+        if (gx > 0) {
+            lo = std::max(lo, a / gx), hi = std::min(hi, b / gx);
+        } else if (gx < 0) {
+            lo = std::max(lo, b / gx), hi = std::min(hi, a / gx);
+        } else if (!(a < 0 && b > 0)) {
+            hi = lo = 0, lo = 1;  // empty
+        }
+    };
+    slab(sx, sy);
+    slab(txx, tyy);
+    if (!(hi >= lo)) return false;
+    // dx = x + 0.5 - sp.x, so x lies in (lo + sp.x - 0.5, hi + sp.x - 0.5).
+    float fa = std::floor(lo + sp.x - 0.5f), fb = std::ceil(hi + sp.x - 0.5f);
+    if (fa > static_cast<float>(xa)) xa = static_cast<int>(fa);
+    if (fb < static_cast<float>(xb)) xb = static_cast<int>(fb);
+    return xa <= xb;
+}
+
+// One sprite's footprint inside one tile, and the screen gradients of its (s, t): across and
+// along the stroke, 0..1 over the sprite.
+struct SpriteSpan {
+    int x0, x1, y0, y1;
+    float sx, sy, txx, tyy;
+};
+
+SpriteSpan sprite_span(const Sprite& sp, int px0, int py0, int px1, int py1) {
+    float ex, ey;
+    sprite_extent(sp, ex, ey);
+    SpriteSpan s;
+    s.x0 = std::max(px0, static_cast<int>(std::floor(sp.x - ex)));
+    s.x1 = std::min(px1 - 1, static_cast<int>(std::floor(sp.x + ex)));
+    s.y0 = std::max(py0, static_cast<int>(std::floor(sp.y - ey)));
+    s.y1 = std::min(py1 - 1, static_cast<int>(std::floor(sp.y + ey)));
+    s.sx = sp.ay / (2.0f * sp.half_w), s.sy = -sp.ax / (2.0f * sp.half_w);
+    s.txx = sp.ax / (2.0f * sp.half_l), s.tyy = sp.ay / (2.0f * sp.half_l);
+    return s;
+}
+
+// What the tile painter shares across its sprites.
+struct TilePainter {
+    const Shot& shot;
+    const SpriteSet& set;
+    const FramePlan& plan;
+    const RenderSettings& rs;
+    Frame& frame;
+    int n;  // samples per pixel axis
+    uint64_t fragments = 0;
+
+    // Premultiplied "over" of one stroke fragment, and the AOVs of the frontmost stroke.
+    void composite(size_t pi, Color col, float a, const Sprite& sp) {
+        a *= sp.opacity;
+        float* px = &frame.rgba[4 * pi];
+        float keep = 1.0f - a;
+        px[0] = col.x * a + px[0] * keep;
+        px[1] = col.y * a + px[1] * keep;
+        px[2] = col.z * a + px[2] * keep;
+        px[3] = a + px[3] * keep;
+        if (plan.aovs) {
+            frame.alpha[pi] = a + frame.alpha[pi] * keep;
+            if (a > 0.5f) {
+                frame.depth[pi] = sp.depth;
+                frame.object_id[pi] = static_cast<float>(sp.object_id);
+                frame.lightness[pi] = sp.k.lightness;
+            }
+        }
+    }
+
+    // The feather, widened by the pixel's footprint in noise space at one sample per pixel
+    // (with more, the samples filter; widening too measures worse).
+    StrokeShaderParams filtered(const Sprite& sp, const StrokeShaderParams& p) const {
+        StrokeShaderParams pf = p;
+        if (rs.filter_strokes && n == 1) {
+            // A smoothstep convolved with the footprint's box: widths add roughly in
+            // quadrature around the same middle.
+            const float w = stroke_filter_width(sp.k, sp.half_w, sp.half_l, n);
+            const float mid = 0.5f * (p.stroke_feather_min + p.stroke_feather_max);
+            const float width = p.stroke_feather_max - p.stroke_feather_min;
+            const float half = 0.5f * std::sqrt(width * width + 4.0f * w * w);
+            pf.stroke_feather_min = mid - half;
+            pf.stroke_feather_max = mid + half;
+        }
+        return pf;
+    }
+
+    // Benchmarks: the footprint blended with a constant colour, the cost floor of a fragment.
+    void bare(const Sprite& sp, const SpriteSpan& r) {
+        for (int y = r.y0; y <= r.y1; ++y) {
+            int xa = r.x0, xb = r.x1;
+            if (!row_span(sp, r.sx, r.sy, r.txx, r.tyy, y, xa, xb)) continue;
+            for (int x = xa; x <= xb; ++x) {
+                float dx = x + 0.5f - sp.x, dy = y + 0.5f - sp.y;
+                float s = 0.5f + dx * r.sx + dy * r.sy, t = 0.5f + dx * r.txx + dy * r.tyy;
+                if (s <= 0.0f || s >= 1.0f || t <= 0.0f || t >= 1.0f) continue;
+                ++fragments;
+                float* px = &frame.rgba[4 * (static_cast<size_t>(y) * frame.width + x)];
+                px[0] = 0.1f + 0.5f * px[0];
+                px[1] = 0.2f + 0.5f * px[1];
+                px[2] = 0.05f + 0.5f * px[2];
+                px[3] = 0.5f + 0.5f * px[3];
+            }
+        }
+    }
+
+    // The vector kernel, one row of the sprite at a time, colours from the sprite's ramp.
+    void rows(const Sprite& sp, const SpriteSpan& r, const SpriteMaterial& m,
+              const StrokeShaderParams& pf, const StrokeRamp& ramp) {
+        const StrokeShaderParams& p = *m.shader;
+        StrokeRow row;
+        row.cx = sp.x, row.cy = sp.y;
+        row.sx = r.sx, row.sy = r.sy, row.txx = r.txx, row.tyy = r.tyy;
+        row.feather_min = pf.stroke_feather_min, row.feather_max = pf.stroke_feather_max;
+        row.max_opacity = p.max_stroke_opacity, row.stroke_fullness = p.stroke_fullness;
+        row.samples_per_axis = n, row.octaves = rs.octaves;
+        row.k = &sp.k, row.edge = &m.edge, row.ramp = &ramp;
+        float al[kTile], rr[kTile], gg[kTile], bb[kTile];
+        int ins[kTile];
+        for (int y = r.y0; y <= r.y1; ++y) {
+            int xa = r.x0, xb = r.x1;
+            if (!row_span(sp, r.sx, r.sy, r.txx, r.tyy, y, xa, xb)) continue;
+            shade_stroke_row(row, y, xa, xb - xa + 1, al, rr, gg, bb, ins);
+            const int len = xb - xa + 1;
+            for (int c = 0; c < len; ++c) fragments += static_cast<uint64_t>(ins[c]);
+            for (int c = 0; c < len; ++c) {
+                if (!(al[c] > 0.0f)) continue;
+                const size_t pi = static_cast<size_t>(y) * frame.width + xa + c;
+                composite(pi, Color(rr[c], gg[c], bb[c]), al[c], sp);
+            }
+        }
+    }
+
+    // Sample by sample: exact edge mask or palette, or light varying over the sprite.
+    void samples(const Sprite& sp, const SpriteSpan& r, const SpriteMaterial& m,
+                 const StrokeShaderParams& pf, const StrokeRamp* ramp, const ShadowGrid* grid);
+
+    void paint(uint32_t idx, int px0, int py0, int px1, int py1) {
+        const Sprite& sp = set.sprites[idx];
+        const SpriteMaterial& m = shot.materials[sp.material];
+        const SpriteSpan r = sprite_span(sp, px0, py0, px1, py1);
+        if (plan.bare_blend) return bare(sp, r);
+        // Light varying over the sprite moves its lightness per fragment: no ramp then.
+        const ShadowGrid* grid =
+            sp.grid >= 0 ? &set.grids[static_cast<size_t>(sp.grid)] : nullptr;
+        // The sprite's colour ramp (palette, tint and atmosphere folded in), when the settings
+        // allow the table: built here, per tile the sprite touches, so no frame-sized array of
+        // ramps is ever held (a ramp's 384 bytes would outweigh the sprite).
+        StrokeRamp ramp;
+        const bool use_ramp = rs.palette_lut && !grid;
+        if (use_ramp) ramp = make_ramp(sp.k, *m.palette);
+        const StrokeShaderParams pf = filtered(sp, *m.shader);
+        if (use_ramp && rs.edge_lut) return rows(sp, r, m, pf, ramp);
+        samples(sp, r, m, pf, use_ramp ? &ramp : nullptr, grid);
+    }
+};
+
+void TilePainter::samples(const Sprite& sp, const SpriteSpan& r, const SpriteMaterial& m,
+                          const StrokeShaderParams& pf, const StrokeRamp* ramp,
+                          const ShadowGrid* grid) {
+    const StrokeShaderParams& p = *m.shader;
+    const float inv_n = 1.0f / static_cast<float>(n);
+    for (int y = r.y0; y <= r.y1; ++y) {
+        int xa = r.x0, xb = r.x1;
+        if (!row_span(sp, r.sx, r.sy, r.txx, r.tyy, y, xa, xb)) continue;
+        for (int x = xa; x <= xb; ++x) {
+            float cover = 0.0f;
+            int inside = 0;
+            for (int j = 0; j < n; ++j)
+                for (int i = 0; i < n; ++i) {
+                    float dx = x + (i + 0.5f) * inv_n - sp.x;
+                    float dy = y + (j + 0.5f) * inv_n - sp.y;
+                    float s = 0.5f + dx * r.sx + dy * r.sy;
+                    float t = 0.5f + dx * r.txx + dy * r.tyy;
+                    if (s <= 0.0f || s >= 1.0f || t <= 0.0f || t >= 1.0f) continue;
+                    ++inside;
+                    float e = rs.edge_lut ? edge_mask(m.edge, s, t, p.stroke_fullness)
+                                          : edge_mask(s, t, p.stroke_fullness);
+                    // noise <= 1: below the lower feather threshold nothing shows.
+                    if (e < pf.stroke_feather_min || e <= 0.0f) continue;
+                    cover += stroke_opacity(pf, stroke_noise(sp.k, s, t, rs.octaves), e);
+                }
+            if (!inside) continue;
+            fragments += static_cast<uint64_t>(inside);
+            float a = cover * inv_n * inv_n;
+            if (!(a > 0.0f)) continue;
+            float dx = x + 0.5f - sp.x, dy = y + 0.5f - sp.y;
+            float s = clamp01(0.5f + dx * r.sx + dy * r.sy);
+            float t = clamp01(0.5f + dx * r.txx + dy * r.tyy);
+            Color col;
+            if (grid) {
+                StrokeConstants k = sp.k;
+                const float light = grid_at(*grid, s, t);
+                if (light < 1.0f) k.lightness *= shadow_remap(light, p.shadow_bias);
+                col = stroke_color(k, *m.palette, s, t);
+            } else {
+                col = ramp ? stroke_color(sp.k, *ramp, s, t) : stroke_color(sp.k, *m.palette, s, t);
+            }
+            composite(static_cast<size_t>(y) * frame.width + x, col, a, sp);
+        }
+    }
+}
+
+}  // namespace
+
+Frame make_frame(const Camera& cam, bool aovs) {
+    Frame frame;
+    frame.width = cam.width;
+    frame.height = cam.height;
+    const size_t npix = static_cast<size_t>(cam.width) * cam.height;
+    frame.rgba.assign(4 * npix, 0.0f);
+    frame.has_aovs = aovs;
+    if (aovs) {
+        frame.depth.assign(npix, std::numeric_limits<float>::infinity());
+        frame.object_id.assign(npix, 0.0f);
+        frame.alpha.assign(npix, 0.0f);
+        frame.lightness.assign(npix, 0.0f);
+    }
+    return frame;
+}
+
+void paint_background(const SceneDesc& scene, const Camera& cam, Frame& frame) {
+    const Background& bg = scene.background;
+    const Color lin[4] = {srgb_to_linear(bg.canvas ? bg.canvas_color : bg.sky_zenith),
+                          srgb_to_linear(bg.sky_horizon), srgb_to_linear(bg.ground_horizon),
+                          srgb_to_linear(bg.ground_near)};
+    // The background is smooth (a gradient under slow noise): it is evaluated on a lattice of
+    // every kBgStep-th pixel and interpolated bilinearly, 1/16 of the work.
+    constexpr int kBgStep = 4;
+    const int gw = (cam.width + kBgStep - 1) / kBgStep + 1;
+    const int gh = (cam.height + kBgStep - 1) / kBgStep + 1;
+    std::vector<Color> lattice(static_cast<size_t>(gw) * gh);
+    tbb::parallel_for(0, gh, [&](int j) {
+        for (int i = 0; i < gw; ++i)
+            lattice[static_cast<size_t>(j) * gw + i] =
+                background_color(bg, cam, lin, kBgStep * i + 0.5, kBgStep * j + 0.5);
+    });
+    tbb::parallel_for(0, cam.height, [&](int y) {
+        const int j = y / kBgStep;
+        const float fy = static_cast<float>(y % kBgStep) / kBgStep;
+        const Color* r0 = &lattice[static_cast<size_t>(j) * gw];
+        const Color* r1 = r0 + gw;
+        for (int x = 0; x < cam.width; ++x) {
+            const int i = x / kBgStep;
+            const float fx = static_cast<float>(x % kBgStep) / kBgStep;
+            Color c = mix(mix(r0[i], r0[i + 1], fx), mix(r1[i], r1[i + 1], fx), fy);
+            float* px = &frame.rgba[4 * (static_cast<size_t>(y) * cam.width + x)];
+            px[0] = c.x, px[1] = c.y, px[2] = c.z, px[3] = 1.0f;
+        }
+    });
+}
+
+uint64_t paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins& bins,
+                       const FramePlan& plan, const RenderSettings& rs, Frame& frame) {
+    const int n = rs.samples >= 16 ? 4 : rs.samples >= 4 ? 2 : 1;
+    std::vector<uint64_t> tile_fragments(bins.bins.size(), 0);
+    tbb::parallel_for(size_t{0}, bins.bins.size(), [&](size_t tile) {
+        const int tx = static_cast<int>(tile % bins.tiles_x);
+        const int ty = static_cast<int>(tile / bins.tiles_x);
+        const int px0 = tx * kTile, py0 = ty * kTile;
+        const int px1 = std::min(px0 + kTile, frame.width);
+        const int py1 = std::min(py0 + kTile, frame.height);
+        TilePainter painter{shot, set, plan, rs, frame, n};
+        for (uint32_t idx : bins.bins[tile]) painter.paint(idx, px0, py0, px1, py1);
+        tile_fragments[tile] = painter.fragments;
+    });
+    uint64_t fragments = 0;
+    for (uint64_t f : tile_fragments) fragments += f;
+    if (plan.aovs)
+        for (float& d : frame.depth)
+            // Background: as far as a float goes (finite, as EXR readers expect, and sorting
+            // behind everything, unlike 0, which reads as nearest).
+            if (!std::isfinite(d)) d = std::numeric_limits<float>::max();
+    return fragments;
+}
+
+}  // namespace pleinair

@@ -1,0 +1,76 @@
+// plan_frame: every decision of a frame, from the shot's plan and the frame settings.
+#include "pipeline/frame_plan.h"
+
+#include "pipeline/shot.h"
+
+namespace pleinair {
+
+bool has_atmosphere_effect(const StrokeShaderParams& p) {
+    return p.dist_hue_strength > 0 || p.dist_sat_limiter > 0 || p.dist_value_min > 0 ||
+           p.dist_value_max < 1;
+}
+
+FramePlan plan_frame(const Shot& shot, const FrameSettings& settings) {
+    const SceneDesc& scene = shot.scene;
+    FramePlan plan;
+    auto add = [&](const char* name, bool ran, std::string why) {
+        plan.decisions.push_back({name, ran, std::move(why), 0, ""});
+    };
+    bool tint = false, atmos = false, sub = false;
+    for (const auto& f : scene.families)
+        for (const auto* p : {&f.leaf_shader, &f.bark_shader}) {
+            tint |= p->unique_tint_amt > 0;
+            atmos |= has_atmosphere_effect(*p);
+            sub |= p->sub_stroke_amt > 0 && p->sub_stroke_frequ >= 0;
+        }
+    plan.bark = shot.plan.bark;
+    add("bark", plan.bark,
+        plan.bark ? "trunks and branches are painted as strokes"
+                  : (scene.build.bark_coverage > 0 ? "bark strokes turned off"
+                                                   : "render/bark_coverage is 0"));
+    plan.tint = tint;
+    add("tint", tint,
+        tint ? "a shader has unique_tint_amt > 0" : "unique_tint_amt is 0 in every shader");
+    plan.atmosphere = scene.has_atmosphere && atmos;
+    add("atmosphere", plan.atmosphere,
+        !scene.has_atmosphere ? "the scene has no atmosphere"
+        : atmos               ? "atmosphere near/far set and a shader has distance effects"
+                              : "every shader's distance effects are zero");
+    plan.sub_stroke = sub;
+    add("sub-stroke colour", sub,
+        sub ? "a shader has sub_stroke_amt > 0" : "sub_stroke_amt is 0 in every shader");
+    plan.aovs = settings.aovs;
+    add("aovs", settings.aovs, settings.aovs ? "asked for (--aovs)" : "not asked for");
+
+    plan.shadows = shot.plan.shadows;
+    plan.fragment_shadows =
+        plan.shadows && settings.render.shadow_samples == ShadowSamples::kFragment;
+    if (!plan.shadows)
+        plan.sun_light = SunLightSource::kNone;
+    else if (shot.plan.sun_moves)
+        plan.sun_light = SunLightSource::kFrameScene;
+    else if (shot.plan.sun_light && !plan.fragment_shadows &&
+             settings.render.shadows == scene.render.shadows)
+        plan.sun_light = SunLightSource::kShot;
+    else
+        plan.sun_light = SunLightSource::kShotScene;
+    const char* where = plan.fragment_shadows ? "a 4 x 4 grid of rays per sprite"
+                                              : "one ray per particle";
+    add("shadows", plan.shadows,
+        !scene.sun_casts_shadows ? "the sun casts no shadows: no shadow scene, no shadow ray"
+        : !plan.shadows          ? "nothing in the scene to cast a shadow"
+        : plan.sun_light == SunLightSource::kShot
+            ? "the still sun's light at each particle, traced once by the shot"
+        : plan.sun_light == SunLightSource::kFrameScene
+            ? std::string("the sun moves: its scene is built for this frame; ") + where
+            : std::string("the sun casts shadows through the stroke casters: ") + where);
+    plan.underpaint = shot.plan.underpaint;
+    add("underpaint", plan.underpaint,
+        plan.underpaint ? "terrain or rocks are visible: flat colour and depth under the strokes"
+                        : "no visible mesh (no terrain, no rocks)");
+    add("level of detail", false, "no distance circles (level of detail is not built yet)");
+    plan.bare_blend = settings.bare_blend;
+    return plan;
+}
+
+}  // namespace pleinair

@@ -1,0 +1,58 @@
+// The first stage of a frame: what it needs, decided from the shot and the frame settings
+// alone (DESIGN.md: "the plan"), each decision with the reason --explain prints.
+#pragma once
+
+#include <vector>
+
+#include "pipeline/camera.h"
+#include "pipeline/report.h"
+#include "pipeline/settings.h"
+
+namespace pleinair {
+
+struct Shot;
+
+// How a frame is painted from a shot: nothing in here rebuilds anything.
+struct FrameSettings {
+    RenderSettings render;
+    bool aovs = false;  // depth, object id, alpha and lightness channels
+    // Benchmarks only: each sprite's footprint blended with a constant colour at opacity 0.5
+    // instead of shaded, to measure what the shader costs over the bare blend.
+    bool bare_blend = false;
+};
+
+// What the camera track and the sun's keys give at the frame's time.
+struct FrameView {
+    Camera camera;
+    glm::dvec3 sun_direction{0, 1, 0};  // towards the sun, unit
+};
+
+// How a frame learns each particle's light.
+enum class SunLightSource {
+    kNone,       // no shadows: every particle is lit
+    kShot,       // traced once by the shot (a still sun, per-particle shadows)
+    kShotScene,  // traced per frame through the shot's sun scene, for the particles it shows
+    kFrameScene  // the sun moves: its scene is built for this frame, then traced
+};
+
+struct FramePlan {
+    bool bark = false;        // bark strokes (grown by the shot)
+    bool tint = false;        // some shader has unique_tint_amt > 0
+    bool atmosphere = false;  // an atmosphere and some shader with a non-zero distance effect
+    bool sub_stroke = false;  // some shader varies colour inside strokes
+    bool aovs = false;
+    bool shadows = false;
+    SunLightSource sun_light = SunLightSource::kNone;
+    bool fragment_shadows = false;  // a 4 x 4 grid of shadow rays per sprite
+    bool underpaint = false;        // a visible mesh: flat colour under the strokes
+    bool bare_blend = false;
+    std::vector<PassReport> decisions;
+};
+
+FramePlan plan_frame(const Shot& shot, const FrameSettings& settings);
+
+// Whether a shader shows distance (hue, saturation or value ranges move with it).
+struct StrokeShaderParams;
+bool has_atmosphere_effect(const StrokeShaderParams& p);
+
+}  // namespace pleinair

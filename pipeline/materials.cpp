@@ -1,0 +1,21 @@
+// MaterialTable: the families' leaf and bark shaders, then the scene's surface materials.
+#include "pipeline/materials.h"
+
+namespace pleinair {
+
+MaterialTable::MaterialTable(const SceneDesc& scene)
+    : families_(static_cast<uint32_t>(scene.families.size())) {
+    auto add = [&](SpriteKind kind, const StrokeShaderParams& shader, const Palette& palette,
+                   const SurfaceShaderParams* surface) {
+        materials_.push_back(
+            {kind, &shader, &palette, surface, make_edge_table(shader.stroke_fullness)});
+    };
+    for (const Family& f : scene.families) {
+        add(SpriteKind::kLeaf, f.leaf_shader, f.leaf_palette, nullptr);
+        add(SpriteKind::kBark, f.bark_shader, f.bark_palette, nullptr);
+    }
+    for (const Material& m : scene.materials)
+        add(SpriteKind::kSurface, m.shader, m.palette, &m.surface);
+}
+
+}  // namespace pleinair

@@ -1,0 +1,49 @@
+// The typed material table of a shot: every stroke shader with its palette, edge table and
+// surface section loaded once, looked up by leaf(family), bark(family) and surface(material).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "pipeline/scene.h"
+
+namespace pleinair {
+
+// What a sprite is: a leaf, a bark stroke on a limb, or a stroke of a surface (grass, earth,
+// water, rock). Stated by whoever makes the sprite, never inferred from its other fields.
+enum class SpriteKind : uint8_t { kLeaf, kBark, kSurface };
+
+// A stroke shader ready to paint: its parameters, palette and edge table (the shader's own
+// stroke_fullness, tabulated once).
+struct SpriteMaterial {
+    SpriteKind kind = SpriteKind::kLeaf;
+    const StrokeShaderParams* shader = nullptr;
+    const Palette* palette = nullptr;
+    const SurfaceShaderParams* surface = nullptr;  // surface materials only
+    EdgeTable edge;
+};
+
+// An index into a MaterialTable.
+struct MaterialId {
+    uint32_t index = 0;
+    bool operator==(const MaterialId&) const = default;
+};
+
+// Built once from a scene, which must outlive it (the materials point into it).
+class MaterialTable {
+  public:
+    MaterialTable() = default;
+    explicit MaterialTable(const SceneDesc& scene);
+
+    MaterialId leaf(uint32_t family) const { return {2 * family}; }
+    MaterialId bark(uint32_t family) const { return {2 * family + 1}; }
+    MaterialId surface(uint32_t material) const { return {2 * families_ + material}; }
+    const SpriteMaterial& operator[](MaterialId id) const { return materials_[id.index]; }
+    size_t size() const { return materials_.size(); }
+
+  private:
+    uint32_t families_ = 0;
+    std::vector<SpriteMaterial> materials_;  // per family leaves then bark; then the surfaces
+};
+
+}  // namespace pleinair

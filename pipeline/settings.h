@@ -1,0 +1,35 @@
+// Painter settings split by what they change: BuildSettings change what build_shot builds,
+// RenderSettings only how a frame is painted from it, so no frame setting rebuilds anything.
+#pragma once
+
+namespace pleinair {
+
+// How a shadow ray treats stroke casters: the opacity of the first card decides (above one
+// half: shadow), or the light is attenuated by every card it crosses.
+enum class ShadowMode { kThreshold, kTransmissive };
+
+// Where shadow rays start: one per particle (the whole stroke shares it), or a 4 x 4 grid over
+// each sprite interpolated per fragment.
+enum class ShadowSamples { kParticle, kFragment };
+
+// What the shot is built with (scene keys under /render; they regrow strokes).
+struct BuildSettings {
+    float bark_coverage = 2.5f;    // bark strokes' area over the limbs' area
+    float surface_density = 1.0f;  // surface particles per cluster, relative
+};
+
+// Quality and style of a frame: what accuracy costs is measured over these.
+struct RenderSettings {
+    float stroke_perspective = 0.6f;  // 0: strokes keep their screen size, 1: true perspective
+    float min_stroke_px = 1.5f;       // no stroke is drawn smaller
+    int samples = 4;                  // stroke-mask samples per pixel: 1, 4 or 16
+    int octaves = 1;                  // stroke-noise octaves
+    bool palette_lut = true;          // colours from a per-sprite table instead of per fragment
+    bool edge_lut = true;             // the edge mask from a table instead of sin and pow
+    bool filter_strokes = true;       // at 1 sample per pixel, widen the feather by its footprint
+    ShadowMode shadows = ShadowMode::kTransmissive;
+    ShadowSamples shadow_samples = ShadowSamples::kParticle;
+    float underpaint_scale = 0.5f;  // underpainting resolution over the image's
+};
+
+}  // namespace pleinair

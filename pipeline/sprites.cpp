@@ -1,0 +1,295 @@
+// make_sprites: per tree and per surface chunk in parallel, concatenated in item order so the
+// sprite list (and every byte painted from it) does not depend on threads.
+#include "pipeline/sprites.h"
+
+#include <tbb/combinable.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+
+#include "pipeline/shot.h"
+
+namespace pleinair {
+
+namespace {
+
+// One particle as the sprite maker reads it, whatever its kind.
+struct SpriteInput {
+    SpriteKind kind = SpriteKind::kLeaf;
+    glm::dvec3 world{0.0};
+    glm::vec3 normal{0.0f};   // world, unit: the lighting normal
+    glm::vec3 tangent{0.0f};  // world, unit (bark, surfaces), or zero (leaves)
+    double width = 0;         // world units
+    double length = 0;
+    float center_distance = 0.5f, branch_distance = 0.5f, label = 0;
+    uint32_t tree_id = 0;
+    float shadow = 1;  // light reaching the particle, 0..1 (IV.4.2)
+    // Surface strokes (IV.7): their own lightness and frequencies, the crest shrink and the
+    // distance fade. Null for leaves and bark.
+    const SurfaceParticles* surface = nullptr;
+    size_t index = 0;
+};
+
+// What every sprite of a frame shares.
+struct SpriteContext {
+    const Shot& shot;
+    const Camera& cam;
+    const RenderSettings& rs;
+    const FramePlan& plan;
+    glm::vec3 sun;
+};
+
+// Size, fade and crest shrink of a sprite on screen; false when nothing of it would show.
+bool sprite_size(const SpriteContext& c, const SpriteMaterial& m, const SpriteInput& in,
+                 const Projection& pr, Sprite& out) {
+    const StrokeShaderParams& p = *m.shader;
+    const double z = pr.depth;
+    const float jitter = stroke_size_jitter(p, in.label);
+    float w = stroke_screen_px(c.cam, c.rs, in.width * jitter, z);
+    float l = stroke_screen_px(c.cam, c.rs, in.length * jitter, z);
+    float opacity = 1;
+    if (in.surface) {
+        const SurfaceParticles& S = *in.surface;
+        // Fig. 25: a surface seen edge-on keeps only the middle of its sprites' height.
+        glm::vec3 to_eye(glm::normalize(c.cam.eye - in.world));
+        l *= crest_factor(glm::dot(S.normal(in.index), to_eye), m.surface->crest_shrink);
+        // Detail strokes fade over their own span of the distance value (IV.7).
+        const float fb = S.fade_begin(in.index);
+        if (fb <= 1.0f) {
+            const Atmosphere& a = c.shot.scene.atmosphere;
+            float dv =
+                color_detail::unit_in(static_cast<float>(z), a.near_distance, a.far_distance);
+            opacity = 1.0f - smoothstep(fb, S.fade_end(in.index), dv);
+            if (!(opacity > 0.0f)) return false;
+        }
+    }
+    const float min_px = c.rs.min_stroke_px;
+    if (w < min_px) l *= min_px / std::max(w, 1e-12f), w = min_px;
+    if (!(w > 0.0f) || !(l > 0.0f) || !std::isfinite(w) || !std::isfinite(l)) return false;
+    out.half_w = 0.5f * w;
+    out.half_l = 0.5f * l;
+    out.opacity = opacity;
+    return true;
+}
+
+// Projects one particle; returns false if it is culled (behind the camera, not finite, too
+// small, too faint or off screen).
+bool make_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in, Sprite& out) {
+    const SpriteMaterial& m = c.shot.materials[mat];
+    const StrokeShaderParams& p = *m.shader;
+    const Projection pr = project(c.cam, in.world);
+    if (!pr.in_front) return false;
+    if (!sprite_size(c, m, in, pr, out)) return false;
+    out.x = pr.x;
+    out.y = pr.y;
+    out.depth = pr.depth;
+    // Stroke direction on screen: along the projected tangent (a normal-free frame, so a limb
+    // seen end-on still gets one), jittered by the label.
+    double angle = 0;
+    if (glm::dot(in.tangent, in.tangent) > 0) {
+        glm::dvec3 t(in.tangent);
+        double tx = glm::dot(t, c.cam.right), ty = -glm::dot(t, c.cam.up);
+        if (tx * tx + ty * ty > 1e-8) angle = std::atan2(ty, tx) - 0.5 * M_PI;
+    }
+    angle += stroke_angle_jitter(p, in.label);
+    out.ax = static_cast<float>(-std::sin(angle));
+    out.ay = static_cast<float>(std::cos(angle));
+    float ex, ey;
+    sprite_extent(out, ex, ey);
+    if (pr.x + ex < 0 || pr.y + ey < 0 || pr.x - ex > c.cam.width || pr.y - ey > c.cam.height)
+        return false;
+
+    const float n_dot_l = glm::dot(in.normal, c.sun);
+    float d = 0;
+    const Atmosphere& a = c.shot.scene.atmosphere;
+    if (c.plan.atmosphere)
+        d = distance_value(pr.depth, a.near_distance, a.far_distance, p.dist_curve_bias);
+    const bool surface = in.kind == SpriteKind::kSurface;
+    out.k = stroke_constants(p, n_dot_l, in.center_distance, in.branch_distance, in.label,
+                             in.tree_id, in.shadow, d, 0.0f,
+                             !surface && c.plan.tint && p.unique_tint_amt > 0,
+                             c.plan.atmosphere && has_atmosphere_effect(p));
+    if (surface) {
+        const SurfaceParticles& S = *in.surface;
+        const float h = S.height(in.index);
+        float l = surface_lightness(*m.surface, n_dot_l, h);
+        if (in.shadow < 1.0f) l *= shadow_remap(in.shadow, p.shadow_bias);
+        out.k.lightness = l;
+        surface_frequencies(*m.surface, h, out.k.frequ_s, out.k.frequ_t);
+        out.object_id = 0x10000u + S.material[in.index];
+    } else {
+        out.object_id = in.tree_id + 1;
+    }
+    out.kind = in.kind;
+    if (!c.plan.sub_stroke) out.k.sub_amt = 0;
+    out.material = mat;
+    return true;
+}
+
+// The particle's sprite input, by kind; `light` is filled in by the caller.
+SpriteInput sprite_input(const Shot& shot, size_t item, SpriteKind kind, size_t j,
+                         const RayOrigin& o, MaterialId& mat) {
+    const std::vector<BuiltTree>& trees = *shot.trees;
+    SpriteInput in;
+    in.kind = kind;
+    in.world = o.world;
+    if (kind == SpriteKind::kSurface) {
+        const size_t chunk = item - trees.size();
+        const SurfaceParticles& S = shot.land->chunks[chunk];
+        mat = shot.materials.surface(S.material[j]);
+        const SpriteMaterial& m = shot.materials[mat];
+        const double w = m.shader->sprite_size * shot.land->chunk_size[chunk] *
+                         inside_size(S.height(j), m.surface->inside_growth);
+        in.normal = lighting_normal(o.normal, S.random_normal(j), m.surface->random_normal_weight);
+        in.tangent = glm::vec3(0, 1, 0);
+        in.width = w;
+        in.length = w * m.shader->stroke_aspect;
+        in.label = S.label[j];
+        in.surface = &S;
+        in.index = j;
+        return in;
+    }
+    const BuiltTree& b = trees[item];
+    const TreePlacement& pl = shot.placements[item];
+    const Family& fam = shot.scene.families[b.family];
+    const bool bark = kind == SpriteKind::kBark;
+    mat = bark ? shot.materials.bark(b.family) : shot.materials.leaf(b.family);
+    const StrokeShaderParams& p = bark ? fam.bark_shader : fam.leaf_shader;
+    in.width = p.sprite_size * fam.params.unit * b.scale;
+    in.length = in.width * p.stroke_aspect;
+    if (bark) {
+        in.normal = o.normal;
+        in.tangent = pl.turn(b.bark.tangent[j]);
+        in.label = b.bark.label[j];
+        in.tree_id = b.tree.id;
+    } else {
+        const LeafParticles& L = b.tree.leaves;
+        in.normal = pl.turn(L.normal[j]);
+        in.center_distance = L.center_distance[j];
+        in.branch_distance = L.branch_distance[j];
+        in.label = L.label[j];
+        in.tree_id = L.tree_id[j];
+    }
+    return in;
+}
+
+// Counters summed over threads: one shared atomic, bumped for every ray, bounces between cores.
+struct Counters {
+    tbb::combinable<uint64_t> shadow_rays{[] { return uint64_t{0}; }};
+    tbb::combinable<uint64_t> hidden{[] { return uint64_t{0}; }};
+};
+
+// Whether the camera sees the particle past the opaque surfaces (a sprite whose centre lies
+// behind a hill or a trunk is culled; the sprites in front paint over the silhouette).
+bool visible(const Shot& shot, const Camera& cam, const RayOrigin& o, Counters& n) {
+    if (!shot.view_rays) return true;
+    const glm::dvec3 from = o.lifted();
+    const glm::dvec3 to_eye = cam.eye - from;
+    const double dist = glm::length(to_eye);
+    if (!(dist > 0)) return true;
+    // Any hit short of the eye hides it: an occlusion query, cheaper than the nearest hit.
+    const bool seen = !shot.view_rays->occluded(from, glm::vec3(to_eye / dist),
+                                                static_cast<float>(dist) * 0.999f,
+                                                o.surface_normal());
+    if (!seen) ++n.hidden.local();
+    return seen;
+}
+
+// The 4 x 4 grid of light over a sprite's footprint, back-projected at the particle's depth.
+ShadowGrid shadow_grid(const SpriteContext& c, const RayScene& sun_rays, const RayOrigin& o,
+                       const Sprite& sp, Counters& n) {
+    ShadowGrid g;
+    const double world_per_px = sp.depth / c.cam.focal_px;
+    for (int j = 0; j < kShadowGrid; ++j)
+        for (int i = 0; i < kShadowGrid; ++i) {
+            const double s = (i + 0.5) / kShadowGrid - 0.5, t = (j + 0.5) / kShadowGrid - 0.5;
+            const double dx = 2 * s * sp.half_w * sp.ay + 2 * t * sp.half_l * sp.ax;
+            const double dy = -2 * s * sp.half_w * sp.ax + 2 * t * sp.half_l * sp.ay;
+            RayOrigin at = o;
+            at.world = o.world + (c.cam.right * dx - c.cam.up * dy) * world_per_px;
+            ++n.shadow_rays.local();
+            g[static_cast<size_t>(j) * kShadowGrid + i] =
+                sun_light_at(sun_rays, at, c.sun, c.rs.shadows);
+        }
+    return g;
+}
+
+}  // namespace
+
+float grid_at(const ShadowGrid& g, float s, float t) {
+    constexpr int kGrid = kShadowGrid;
+    const float x = std::clamp(s * kGrid - 0.5f, 0.0f, kGrid - 1.0f);
+    const float y = std::clamp(t * kGrid - 0.5f, 0.0f, kGrid - 1.0f);
+    const int i = std::min(static_cast<int>(x), kGrid - 2),
+              j = std::min(static_cast<int>(y), kGrid - 2);
+    const float fx = x - i, fy = y - j;
+    const float* r0 = &g[static_cast<size_t>(j) * kGrid + i];
+    const float* r1 = r0 + kGrid;
+    return (r0[0] * (1 - fx) + r0[1] * fx) * (1 - fy) + (r1[0] * (1 - fx) + r1[1] * fx) * fy;
+}
+
+void sprite_extent(const Sprite& sp, float& ex, float& ey) {
+    ex = std::abs(sp.ax) * sp.half_l + std::abs(sp.ay) * sp.half_w;
+    ey = std::abs(sp.ay) * sp.half_l + std::abs(sp.ax) * sp.half_w;
+}
+
+// True perspective scaled by (focus / z)^(1 - stroke_perspective), so strokes shrink less than
+// geometry.
+float stroke_screen_px(const Camera& cam, const RenderSettings& r, double world, double z) {
+    double p = std::clamp<double>(r.stroke_perspective, 0.0, 1.0);
+    double px = cam.focal_px * world / (std::pow(cam.focus_distance, 1.0 - p) * std::pow(z, p));
+    return static_cast<float>(px);
+}
+
+SpriteSet make_sprites(const Shot& shot, const FrameView& view, const FramePlan& plan,
+                       const RenderSettings& rs, const RayScene* sun_rays) {
+    const SpriteContext c{shot, view.camera, rs, plan, glm::vec3(view.sun_direction)};
+    const size_t items = shot.item_count();
+    std::vector<SpriteSet> per_item(items);
+    Counters counters;
+    const bool traced = plan.sun_light == SunLightSource::kShotScene ||
+                        plan.sun_light == SunLightSource::kFrameScene;
+    tbb::parallel_for(size_t{0}, items, [&](size_t i) {
+        FlushDenormals ftz;  // Embree's modes, while this task traces
+        SpriteSet& out = per_item[i];
+        size_t k = 0;  // the particle's index in the shot's light cache
+        for_each_particle(shot, i, [&](SpriteKind kind, size_t j, const RayOrigin& o) {
+            const size_t slot = k++;
+            if (!visible(shot, c.cam, o, counters)) return void(++out.culled);
+            MaterialId mat;
+            SpriteInput in = sprite_input(shot, i, kind, j, o, mat);
+            if (plan.sun_light == SunLightSource::kShot)
+                in.shadow = shot.sun_light[i][slot];
+            else if (traced && !plan.fragment_shadows)
+                ++counters.shadow_rays.local(),
+                    in.shadow = sun_light_at(*sun_rays, o, c.sun, rs.shadows);
+            Sprite sp;
+            if (!make_sprite(c, mat, in, sp)) return void(++out.culled);
+            if (plan.fragment_shadows) {
+                sp.grid = static_cast<int32_t>(out.grids.size());
+                out.grids.push_back(shadow_grid(c, *sun_rays, o, sp, counters));
+            }
+            out.sprites.push_back(sp);
+        });
+    });
+    SpriteSet all;
+    for (SpriteSet& s : per_item) {
+        for (Sprite& sp : s.sprites) {
+            if (sp.grid >= 0) sp.grid += static_cast<int32_t>(all.grids.size());
+            (sp.kind == SpriteKind::kLeaf   ? all.leaf
+             : sp.kind == SpriteKind::kBark ? all.bark
+                                            : all.surface)++;
+        }
+        all.grids.insert(all.grids.end(), s.grids.begin(), s.grids.end());
+        all.sprites.insert(all.sprites.end(), s.sprites.begin(), s.sprites.end());
+        all.culled += s.culled;
+        s = SpriteSet{};
+    }
+    all.shadow_rays = counters.shadow_rays.combine(std::plus<uint64_t>());
+    all.hidden = counters.hidden.combine(std::plus<uint64_t>());
+    return all;
+}
+
+}  // namespace pleinair

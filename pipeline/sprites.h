@@ -1,0 +1,58 @@
+// The sprites stage of a frame: every particle projected to a camera-facing brush-stroke sprite,
+// frustum-culled, culled when hidden behind an opaque surface, and given the sun's light.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "pipeline/frame_plan.h"
+#include "pipeline/materials.h"
+#include "shading/stroke_shader.h"
+
+namespace pleinair {
+
+struct Shot;
+class RayScene;
+
+// Shadows per fragment: the light at a 4 x 4 grid of points over the sprite, interpolated.
+constexpr int kShadowGrid = 4;
+using ShadowGrid = std::array<float, kShadowGrid * kShadowGrid>;
+float grid_at(const ShadowGrid& g, float s, float t);
+
+struct Sprite {
+    float x = 0, y = 0, depth = 0;
+    float half_w = 0, half_l = 0;  // across and along the stroke, pixels
+    float ax = 0, ay = 1;          // unit screen direction of the stroke's length
+    float opacity = 1;             // detail strokes fading with distance (IV.7)
+    int32_t grid = -1;             // its shadow grid, with shadows per fragment
+    MaterialId material;
+    uint32_t object_id = 0;
+    SpriteKind kind = SpriteKind::kLeaf;
+    StrokeConstants k;
+};
+
+// Half extents of a sprite's screen-aligned bounding box (the rotated rectangle's).
+void sprite_extent(const Sprite& sp, float& ex, float& ey);
+
+// Screen size in pixels of a world length at view depth z (thesis ch. I: brush strokes do not
+// shrink like geometry): true perspective at stroke_perspective 1, the size it has at the
+// camera's focus distance whatever the depth at 0, in between otherwise. The painter then
+// enlarges anything under min_stroke_px.
+float stroke_screen_px(const Camera& cam, const RenderSettings& r, double world, double depth);
+
+struct SpriteSet {
+    std::vector<Sprite> sprites;  // per tree (bark, then leaves), then per surface chunk
+    std::vector<ShadowGrid> grids;
+    uint64_t leaf = 0, bark = 0, surface = 0;
+    uint64_t culled = 0;  // behind the camera, off screen, too faint, or hidden
+    uint64_t hidden = 0;  // of those, behind an opaque surface
+    uint64_t shadow_rays = 0;
+};
+
+// `sun_rays` is the sun's scene for this frame (the shot's, or one built for a moving sun);
+// null when the plan takes no light from rays.
+SpriteSet make_sprites(const Shot& shot, const FrameView& view, const FramePlan& plan,
+                       const RenderSettings& settings, const RayScene* sun_rays);
+
+}  // namespace pleinair

@@ -1,0 +1,120 @@
+// paint_underpainting: camera rays at a fraction of the resolution, one flat palette colour per
+// hit, interpolated up and composited over the background.
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+
+#include "pipeline/composite.h"
+#include "pipeline/shot.h"
+
+namespace pleinair {
+
+namespace {
+
+// The low-resolution underpainting: premultiplied colour, coverage and depth per cell.
+struct Underpainting {
+    int w = 0, h = 0;
+    double fx = 1, fy = 1;  // image pixels per cell
+    std::vector<Color> color;
+    std::vector<float> cover, depth;
+};
+
+// The colour under the strokes where a camera ray hits a surface.
+Color underpaint_color(const Shot& shot, const FrameView& view, const FramePlan& plan,
+                       const RenderSettings& rs, const RayScene* sun_rays, const RayHit& h,
+                       const glm::dvec3& world, glm::vec3 n, const glm::dvec3& dir) {
+    const SceneDesc& scene = shot.scene;
+    if (glm::dot(glm::dvec3(n), dir) > 0) n = -n;
+    const ViewSurface& vs = shot.view_surfaces[h.geometry];
+    const MaterialId mat =
+        vs.terrain ? shot.materials.surface(terrain_material_at(scene, world)) : vs.material;
+    const SpriteMaterial& m = shot.materials[mat];
+    const glm::vec3 sun(view.sun_direction);
+    const float n_dot_l = glm::dot(n, sun);
+    // A middle-depth stroke's lightness, a little darker: paint under paint.
+    float l = m.surface ? surface_lightness(*m.surface, n_dot_l, 0.5f) : clamp01(n_dot_l);
+    l *= 0.9f;
+    if (plan.shadows && sun_rays) {
+        const float sh = sun_light_at(*sun_rays, RayOrigin{world, n, true, 0.01f}, sun, rs.shadows);
+        if (sh < 1.0f) l *= shadow_remap(sh, m.shader->shadow_bias);
+    }
+    const Camera& cam = view.camera;
+    const float depth = static_cast<float>(glm::dot(world - cam.eye, cam.forward));
+    float d = 0;
+    if (plan.atmosphere)
+        d = distance_value(depth, scene.atmosphere.near_distance, scene.atmosphere.far_distance,
+                           m.shader->dist_curve_bias);
+    StrokeConstants k = stroke_constants(*m.shader, n_dot_l, 0.5f, 0.5f, 0.5f, 0, 1.0f, d, 0.0f,
+                                         false, plan.atmosphere && has_atmosphere_effect(*m.shader));
+    return finish_color(k, palette_lookup(*m.palette, l));
+}
+
+Underpainting trace_underpainting(const Shot& shot, const FrameView& view, const FramePlan& plan,
+                                  const RenderSettings& rs, const RayScene* sun_rays) {
+    const Camera& cam = view.camera;
+    Underpainting u;
+    u.w = std::max(1, static_cast<int>(std::ceil(cam.width * rs.underpaint_scale)));
+    u.h = std::max(1, static_cast<int>(std::ceil(cam.height * rs.underpaint_scale)));
+    u.fx = static_cast<double>(cam.width) / u.w;
+    u.fy = static_cast<double>(cam.height) / u.h;
+    u.color.assign(static_cast<size_t>(u.w) * u.h, Color(0.0f));
+    u.cover.assign(u.color.size(), 0.0f);
+    u.depth.assign(u.color.size(), 0.0f);
+    tbb::parallel_for(0, u.h, [&](int j) {
+        FlushDenormals ftz;
+        for (int i = 0; i < u.w; ++i) {
+            const glm::dvec3 dir = ray_direction(cam, (i + 0.5) * u.fx, (j + 0.5) * u.fy);
+            const RayHit h = shot.view_rays->intersect(cam.eye, glm::vec3(dir));
+            if (!h.hit) continue;
+            const glm::dvec3 world = cam.eye + dir * static_cast<double>(h.t);
+            const size_t c = static_cast<size_t>(j) * u.w + i;
+            u.color[c] =
+                underpaint_color(shot, view, plan, rs, sun_rays, h, world, h.normal, dir);
+            u.cover[c] = 1.0f;
+            u.depth[c] = static_cast<float>(glm::dot(world - cam.eye, cam.forward));
+        }
+    });
+    return u;
+}
+
+}  // namespace
+
+uint64_t paint_underpainting(const Shot& shot, const FrameView& view, const FramePlan& plan,
+                             const RenderSettings& rs, const RayScene* sun_rays, Frame& frame) {
+    const Underpainting u = trace_underpainting(shot, view, plan, rs, sun_rays);
+    const int width = frame.width, uw = u.w, uh = u.h;
+    tbb::parallel_for(0, frame.height, [&](int y) {
+        const float sy = std::clamp(static_cast<float>((y + 0.5) / u.fy - 0.5), 0.0f, uh - 1.0f);
+        const int j0 = static_cast<int>(sy), j1 = std::min(j0 + 1, uh - 1);
+        const float wy = sy - j0;
+        for (int x = 0; x < width; ++x) {
+            const float sx = std::clamp(static_cast<float>((x + 0.5) / u.fx - 0.5), 0.0f, uw - 1.0f);
+            const int i0 = static_cast<int>(sx), i1 = std::min(i0 + 1, uw - 1);
+            const float wx = sx - i0;
+            const size_t a = static_cast<size_t>(j0) * uw + i0, b = static_cast<size_t>(j0) * uw + i1,
+                         c = static_cast<size_t>(j1) * uw + i0, d = static_cast<size_t>(j1) * uw + i1;
+            auto lerp = [](float p, float q, float t) { return p + (q - p) * t; };
+            const float cov =
+                lerp(lerp(u.cover[a], u.cover[b], wx), lerp(u.cover[c], u.cover[d], wx), wy);
+            if (!(cov > 0.0f)) continue;
+            const Color col =
+                mix(mix(u.color[a], u.color[b], wx), mix(u.color[c], u.color[d], wx), wy);
+            float* px = &frame.rgba[4 * (static_cast<size_t>(y) * width + x)];
+            // Both premultiplied: the underpainting over the background.
+            px[0] = col.x + px[0] * (1.0f - cov);
+            px[1] = col.y + px[1] * (1.0f - cov);
+            px[2] = col.z + px[2] * (1.0f - cov);
+            if (plan.aovs && cov >= 0.5f) {
+                const size_t pi = static_cast<size_t>(y) * width + x;
+                const size_t nearest = static_cast<size_t>(wy < 0.5f ? j0 : j1) * uw +
+                                       static_cast<size_t>(wx < 0.5f ? i0 : i1);
+                frame.depth[pi] = u.cover[nearest] > 0 ? u.depth[nearest] : u.depth[a];
+            }
+        }
+    });
+    return static_cast<uint64_t>(uw) * uh;
+}
+
+}  // namespace pleinair
