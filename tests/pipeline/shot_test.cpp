@@ -1,0 +1,196 @@
+// The shot and the frame's stages: a shot's cached sun light paints the same bytes as rays
+// traced per frame, frame settings never need a rebuild, a frame does not depend on the frames
+// painted before it, and each stage (plan, materials, sprites, depth order, tiles) on its own.
+#include "pipeline/shot.h"
+
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "pipeline/bin.h"
+#include "pipeline/image_io.h"
+#include "pipeline/paint.h"
+#include "pipeline/sprites.h"
+
+namespace pleinair {
+namespace {
+
+// Terrain, water, a rock and two trees under a sun that casts shadows.
+SceneDesc lit_scene(const std::string& render = R"({"samples": 1})") {
+    return parse_scene(R"({"camera": {"position": [0, 3, 40], "look_at": [0, 4, -10], "fov": 50,
+                                      "width": 80, "height": 56},
+        "sun": {"direction": [-0.5, 0.6, 0.4], "casts_shadows": true},
+        "atmosphere": {"near": 10, "far": 150},
+        "materials": {"grass": {"shader": "grass"}, "earth": {"shader": "earth"},
+                      "water": {"shader": "water"}, "rock": {"shader": "rock"}},
+        "terrain": {"seed": 2, "min": [-60, -80], "max": [60, 50], "resolution": 33,
+                    "hills": [{"center": [15, 5], "radius": 15, "height": -2}],
+                    "material": "grass", "bank_material": "earth",
+                    "strokes": {"particle_spans_u": 30, "particle_spans_v": 30}},
+        "water": {"level": 0.0, "strokes": {"particle_spans_u": 8, "particle_spans_v": 8}},
+        "rocks": [{"seed": 1, "position": [-6, 0.2, 20]}],
+        "families": {"birch": {"preset": "birch"}, "shrub": {"preset": "shrub"}},
+        "trees": [{"family": "birch", "seed": 3, "position": [8, 0, 18]},
+                  {"family": "shrub", "seed": 4, "position": [-3, 0, 25]}],
+        "render": )" + render + "}",
+                       "test");
+}
+
+bool same_pixels(const Frame& a, const Frame& b) {
+    return a.rgba.size() == b.rgba.size() &&
+           std::memcmp(a.rgba.data(), b.rgba.data(), a.rgba.size() * sizeof(float)) == 0;
+}
+
+Frame paint(const Shot& shot, FrameReport* rep = nullptr) {
+    return paint_frame(shot, still_view(shot.scene), scene_frame_settings(shot.scene), rep);
+}
+
+TEST(Shot, CachedSunLightPaintsTheSameBytesAsRaysPerFrame) {
+    const Shot traced = build_shot(lit_scene());
+    ShotOptions o;
+    o.cache_sun_light = true;
+    const Shot cached = build_shot(lit_scene(), o);
+    ASSERT_FALSE(traced.plan.sun_light);
+    ASSERT_TRUE(cached.plan.sun_light);
+    ASSERT_EQ(cached.sun_light.size(), cached.item_count());
+    FrameReport a, b;
+    const Frame fa = paint(traced, &a), fb = paint(cached, &b);
+    EXPECT_GT(a.shadow_rays, 0u);
+    EXPECT_EQ(b.shadow_rays, 0u) << "the frame takes every particle's light from the shot";
+    EXPECT_TRUE(same_pixels(fa, fb));
+    // The light did something: some particle is in shadow.
+    float darkest = 1;
+    for (const auto& item : cached.sun_light)
+        for (float l : item) darkest = std::min(darkest, l);
+    EXPECT_LT(darkest, 0.5f);
+}
+
+TEST(Shot, FrameSettingsThatDifferFromTheCacheTraceInstead) {
+    ShotOptions o;
+    o.cache_sun_light = true;
+    const Shot cached = build_shot(lit_scene(), o);  // transmissive light cached
+    FrameSettings threshold = scene_frame_settings(cached.scene);
+    threshold.render.shadows = ShadowMode::kThreshold;
+    EXPECT_EQ(plan_frame(cached, threshold).sun_light, SunLightSource::kShotScene);
+    const Frame a = paint_frame(cached, still_view(cached.scene), threshold);
+    const Shot fresh = build_shot(lit_scene(R"({"samples": 1, "shadows": "threshold"})"));
+    const Frame b = paint(fresh);
+    EXPECT_TRUE(same_pixels(a, b));
+    EXPECT_FALSE(same_pixels(a, paint(cached)));  // the mode changed the picture
+}
+
+TEST(Shot, AFrameDoesNotDependOnTheFramesPaintedBefore) {
+    const Shot shot = build_shot(lit_scene());
+    FrameView near = still_view(shot.scene), far = near;
+    CameraParams p = shot.scene.camera_params;
+    p.position = {10, 6, 60};
+    ASSERT_EQ(make_camera(p, far.camera), "");
+    const FrameSettings s = scene_frame_settings(shot.scene, true);
+    const Frame first = paint_frame(shot, near, s);
+    const Frame other = paint_frame(shot, far, s);
+    const Frame again = paint_frame(shot, near, s);
+    EXPECT_FALSE(same_pixels(first, other));
+    EXPECT_TRUE(same_pixels(first, again));
+    EXPECT_EQ(first.depth, again.depth);
+    EXPECT_EQ(first.object_id, again.object_id);
+    // And a shot built anew paints it the same, on one thread as on two.
+    Frame fresh;
+    tbb::task_arena(1).execute([&] { fresh = paint_frame(build_shot(lit_scene()), near, s); });
+    EXPECT_TRUE(same_pixels(first, fresh));
+}
+
+TEST(Shot, PlansOnlyWhatTheSceneNeeds) {
+    SceneDesc s = lit_scene();
+    s.sun_casts_shadows = false;
+    const Shot unlit = build_shot(s);
+    EXPECT_FALSE(unlit.plan.shadows);
+    EXPECT_FALSE(unlit.sun_rays);
+    EXPECT_TRUE(unlit.view_rays);
+    EXPECT_EQ(plan_frame(unlit, scene_frame_settings(s)).sun_light, SunLightSource::kNone);
+    s.build.bark_coverage = 0;
+    const Shot bare = build_shot(s);
+    EXPECT_FALSE(bare.plan.bark);
+    for (const BuiltTree& t : *bare.trees) EXPECT_EQ(t.bark.size(), 0u);
+    // The view scene knows what each of its geometries is painted with underneath.
+    const Shot shot = build_shot(lit_scene());
+    ASSERT_EQ(shot.view_surfaces.size(), 1u + 1u + 1u + 2u);  // terrain, water, rock, 2 trees
+    EXPECT_TRUE(shot.view_surfaces[0].terrain);
+    EXPECT_EQ(shot.view_surfaces[1].material, shot.materials.surface(shot.scene.water.material));
+    EXPECT_EQ(shot.view_surfaces[4].material, shot.materials.bark((*shot.trees)[1].family));
+}
+
+TEST(Materials, LookupsByKindAndName) {
+    const SceneDesc s = lit_scene();
+    const MaterialTable m(s);
+    ASSERT_EQ(m.size(), 2 * s.families.size() + s.materials.size());
+    for (uint32_t f = 0; f < s.families.size(); ++f) {
+        EXPECT_EQ(m[m.leaf(f)].shader, &s.families[f].leaf_shader);
+        EXPECT_EQ(m[m.leaf(f)].palette, &s.families[f].leaf_palette);
+        EXPECT_EQ(m[m.leaf(f)].kind, SpriteKind::kLeaf);
+        EXPECT_EQ(m[m.bark(f)].shader, &s.families[f].bark_shader);
+        EXPECT_EQ(m[m.bark(f)].kind, SpriteKind::kBark);
+        EXPECT_EQ(m[m.bark(f)].surface, nullptr);
+    }
+    for (uint32_t i = 0; i < s.materials.size(); ++i) {
+        EXPECT_EQ(m[m.surface(i)].surface, &s.materials[i].surface);
+        EXPECT_EQ(m[m.surface(i)].kind, SpriteKind::kSurface);
+        // The edge table is the shader's own.
+        const EdgeTable e = make_edge_table(s.materials[i].shader.stroke_fullness);
+        EXPECT_EQ(0, std::memcmp(&e, &m[m.surface(i)].edge, sizeof e));
+    }
+}
+
+TEST(Sprites, EveryParticleIsASpriteOrCulled) {
+    const Shot shot = build_shot(lit_scene());
+    const FrameSettings settings = scene_frame_settings(shot.scene);
+    const FramePlan plan = plan_frame(shot, settings);
+    const SpriteSet set =
+        make_sprites(shot, still_view(shot.scene), plan, settings.render, shot.sun_rays.get());
+    size_t particles = shot.land->stroke_count();
+    for (const BuiltTree& t : *shot.trees) particles += t.tree.leaves.size() + t.bark.size();
+    EXPECT_EQ(set.sprites.size() + set.culled, particles);
+    EXPECT_EQ(set.leaf + set.bark + set.surface, set.sprites.size());
+    EXPECT_GT(set.hidden, 0u);
+    EXPECT_LE(set.hidden, set.culled);
+    for (const Sprite& sp : set.sprites) {
+        ASSERT_TRUE(std::isfinite(sp.x) && std::isfinite(sp.y) && sp.depth > 0);
+        ASSERT_GT(sp.half_w, 0.0f);
+        ASSERT_NEAR(sp.ax * sp.ax + sp.ay * sp.ay, 1.0f, 1e-5f);
+        ASSERT_EQ(sp.kind, shot.materials[sp.material].kind);
+    }
+    // Looking away from everything: nothing left, nothing traced for the sun.
+    FrameView away = still_view(shot.scene);
+    CameraParams p = shot.scene.camera_params;
+    p.position = {0, 3, 300};  // beyond the terrain, looking away from it
+    p.look_at = p.position + glm::dvec3(0, 0, 10);
+    ASSERT_EQ(make_camera(p, away.camera), "");
+    const SpriteSet none = make_sprites(shot, away, plan, settings.render, shot.sun_rays.get());
+    EXPECT_EQ(none.sprites.size(), 0u);
+}
+
+TEST(DepthOrder, BackToFrontWithTiesByIndex) {
+    std::vector<Sprite> s(5);
+    const float depth[] = {1, 3, 3, 2, 3};
+    for (size_t i = 0; i < s.size(); ++i) s[i].depth = depth[i];
+    EXPECT_EQ(depth_order(s), (std::vector<uint32_t>{1, 2, 4, 3, 0}));
+}
+
+TEST(Bins, EveryTileASpriteTouchesListsItInOrder) {
+    std::vector<Sprite> s(3);
+    s[0].x = 70, s[0].y = 10, s[0].half_w = 10, s[0].half_l = 10;  // tiles 0 and 1 of row 0
+    s[1].x = 10, s[1].y = 10, s[1].half_w = 2, s[1].half_l = 2, s[1].depth = 5;
+    s[2].x = -500, s[2].y = 1e6f, s[2].half_w = 1, s[2].half_l = 1;  // clamped to a corner
+    const std::vector<uint32_t> order = depth_order(s);
+    const TileBins b = bin_sprites(s, order, 150, 100);
+    ASSERT_EQ(b.tiles_x, 3);
+    ASSERT_EQ(b.tiles_y, 2);
+    EXPECT_EQ(b.bins[0], (std::vector<uint32_t>{1, 0}));  // the far one first
+    EXPECT_EQ(b.bins[1], (std::vector<uint32_t>{0}));
+    EXPECT_TRUE(b.bins[2].empty());
+    EXPECT_EQ(b.bins[3], (std::vector<uint32_t>{2}));
+}
+
+}  // namespace
+}  // namespace pleinair
