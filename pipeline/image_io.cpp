@@ -1,21 +1,25 @@
-// OpenImageIO writers with the atomic rename; the only file that includes OpenImageIO.
+// OpenImageIO writers into a file in memory whose bytes write_file_atomic writes; the only file
+// that includes OpenImageIO.
 #include "pipeline/image_io.h"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
-#include <system_error>
 
 #include "pipeline/error.h"
+#include "pipeline/write_file.h"
 #include "shading/color.h"
 
 namespace pleinair {
@@ -92,6 +96,44 @@ uint8_t srgb8(float v) {
     return static_cast<uint8_t>(level);
 }
 
+// An anonymous file in memory (memfd), which a library opens by its /proc/self/fd name.
+class MemoryFile {
+  public:
+    explicit MemoryFile(const fs::path& target)
+        : fd_(::memfd_create("pleinair-image", MFD_CLOEXEC)) {
+        if (fd_ < 0)
+            throw std::runtime_error("cannot write " + target.string() +
+                                     ": no file in memory: " + std::strerror(errno));
+        target_ = target;
+    }
+    ~MemoryFile() { ::close(fd_); }
+    MemoryFile(const MemoryFile&) = delete;
+    MemoryFile& operator=(const MemoryFile&) = delete;
+
+    std::string name() const { return "/proc/self/fd/" + std::to_string(fd_); }
+
+    std::string bytes() const {
+        struct stat st;
+        if (::fstat(fd_, &st) != 0) fail(errno);
+        std::string b(static_cast<size_t>(st.st_size), '\0');
+        for (size_t done = 0; done < b.size();) {
+            ssize_t n = ::pread(fd_, b.data() + done, b.size() - done, static_cast<off_t>(done));
+            if (n > 0)
+                done += static_cast<size_t>(n);
+            else if (n == 0 || errno != EINTR)
+                fail(n == 0 ? EIO : errno);
+        }
+        return b;
+    }
+
+  private:
+    [[noreturn]] void fail(int err) const {
+        throw std::runtime_error("cannot write " + target_.string() + ": " + std::strerror(err));
+    }
+    int fd_;
+    fs::path target_;
+};
+
 }  // namespace
 
 std::vector<uint8_t> frame_srgb8(const Frame& f) {
@@ -164,28 +206,27 @@ void write_frame(const fs::path& path, const Frame& f) {
     }
     if (ext != ".exr") spec.attribute("oiio:ColorSpace", "sRGB");
     spec.attribute("Software", "pleinair");
+    // The TIFF and EXR writers stamp the current time unless a DateTime is given; an empty one
+    // (EXR keeps it as an empty capDate, TIFF drops it) keeps the same inputs the same bytes.
+    spec.attribute("DateTime", "");
 
-    // The temporary keeps the extension so OpenImageIO picks the same format, and carries the
-    // process id so two renders to the same target never write into one temporary.
-    fs::path tmp = path;
-    std::string tmp_name = ".";
-    tmp_name.append(path.stem().string())
-        .append(".partial-")
-        .append(std::to_string(::getpid()))
-        .append(path.extension().string());
-    tmp.replace_filename(tmp_name);
-    auto out = OIIO::ImageOutput::create(tmp.string());
+    // OpenImageIO's writers cannot be trusted with the disk: the PNG writer notes a failed write
+    // and reports success (a full disk gave exit 0 and a truncated image), the TIFF writer's
+    // close "cannot fail" though it writes the directory then, and 2.4's TIFF writer corrupts
+    // its file when given an IOProxy. So the writer writes into a file in memory, opened by name
+    // like any file, and write_file_atomic writes its bytes, checking every write, the fsync
+    // and the close. The bytes are those the writer gives a file on disk.
+    MemoryFile memory(path);
+    auto out = OIIO::ImageOutput::create(path.string());  // the format from the target's name
     bool ok =
-        out && out->open(tmp.string(), spec) && out->write_image(in_type, data) && out->close();
-    std::string err = out ? out->geterror() : OIIO::geterror();
-    out.reset();
-    std::error_code ec;
-    if (ok) fs::rename(tmp, path, ec);
-    if (!ok || ec) {
-        fs::remove(tmp, ec);
+        out && out->open(memory.name(), spec) && out->write_image(in_type, data) && out->close();
+    if (!ok) {
+        std::string err = out ? out->geterror() : OIIO::geterror();
         throw std::runtime_error("cannot write " + path.string() + ": " +
-                                 (err.empty() ? "rename failed" : err));
+                                 (err.empty() ? "OpenImageIO cannot encode it" : err));
     }
+    out.reset();
+    write_file_atomic(path, memory.bytes());
 }
 
 ImageError compare_frames(const Frame& a, const Frame& ref) {

@@ -1,6 +1,7 @@
 // Frame output through OpenImageIO, format from the extension: PNG (8-bit sRGB), TIFF (16-bit
-// sRGB), EXR (half float, linear, with AOV channels when the frame has them). Written to a
-// temporary name beside the target and renamed when complete.
+// sRGB), EXR (half float, linear, with AOV channels when the frame has them). Encoded in memory,
+// written to a temporary beside the target and renamed when complete; headers carry no time, so
+// the same frame gives the same bytes.
 #pragma once
 
 #include <filesystem>
@@ -17,7 +18,8 @@ namespace pleinair {
 bool is_image_path(const std::filesystem::path& path);
 
 // Throws InputError for an unsupported extension (before anything is written) and
-// std::runtime_error if writing fails; no partial file remains either way.
+// std::runtime_error naming the file if encoding or any write fails; no partial file remains
+// either way and an earlier file of the same name is untouched.
 void write_frame(const std::filesystem::path& path, const Frame& frame);
 
 // 8-bit sRGB RGB bytes of the frame (what a PNG holds), for tests and contact sheets.

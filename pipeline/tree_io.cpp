@@ -1,17 +1,24 @@
-// Tree output through OpenMesh's IO and nlohmann/json.
+// Tree output through OpenMesh's IO and nlohmann/json; folders written whole or not at all.
 #include "pipeline/tree_io.h"
 
 // MeshIO must come before the mesh kernel headers so the readers and writers register.
+#include <tbb/parallel_for.h>
+
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <cstdio>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 
+#include "pipeline/error.h"
+#include "pipeline/partial_files.h"
 #include "pipeline/write_file.h"
 
 namespace pleinair {
+
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -138,11 +145,11 @@ std::string tree_json(const Tree& t, const std::string& preset_name) {
     return j.dump(2) + "\n";
 }
 
-void write_tree(const Tree& t, const std::string& preset_name, const std::filesystem::path& dir) {
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec) throw std::runtime_error(dir.string() + ": cannot create directory: " + ec.message());
-    // Everything is formatted before the first byte is written.
+namespace {
+
+// Everything is formatted before the first byte is written.
+std::vector<std::pair<std::string, std::string>> tree_files(const Tree& t,
+                                                            const std::string& preset_name) {
     std::vector<std::pair<std::string, std::string>> files = {
         {"control.obj", mesh_obj(t.control, t.origin)},
         {"control.ply", mesh_ply(t.control, t.origin)},
@@ -155,7 +162,84 @@ void write_tree(const Tree& t, const std::string& preset_name, const std::filesy
         files.emplace_back("lod.obj", mesh_obj(t.lod, t.origin));
         files.emplace_back("lod.ply", mesh_ply(t.lod, t.origin));
     }
-    for (const auto& [name, bytes] : files) write_file_atomic(dir / name, bytes);
+    return files;
+}
+
+// A new folder inside a temporary one: no temporaries of its own, the enclosing one is renamed.
+// Errors name `shown`, where the folder will be once renamed.
+void make_folder(const fs::path& dir, const fs::path& shown) {
+    std::error_code ec;
+    fs::create_directory(dir, ec);
+    if (ec) throw std::runtime_error("cannot write " + shown.string() + ": " + ec.message());
+}
+
+void write_tree_files(const std::vector<std::pair<std::string, std::string>>& files,
+                      const fs::path& dir, const fs::path& shown) {
+    make_folder(dir, shown);
+    for (const auto& [name, bytes] : files) write_new_file(dir / name, bytes, shown / name);
+}
+
+void make_parent(const fs::path& dir) {
+    fs::path parent = fs::absolute(dir).parent_path();
+    std::error_code ec;
+    fs::create_directories(parent, ec);
+    if (ec) throw std::runtime_error("cannot write " + dir.string() + ": " + ec.message());
+}
+
+std::string member_folder(const std::string& preset_name, const Tree& t) {
+    char name[64];
+    std::snprintf(name, sizeof name, "%s-%03u-seed-%llu", preset_name.c_str(), t.id,
+                  static_cast<unsigned long long>(t.seed));
+    return name;
+}
+
+}  // namespace
+
+void check_output_folder(const fs::path& dir, const std::string& marker) {
+    std::error_code ec;
+    auto status = fs::symlink_status(dir, ec);
+    if (!fs::exists(status)) return;
+    if (fs::is_symlink(status))
+        throw InputError("--out", "", dir.string() + " is a symbolic link; give the folder itself");
+    if (!fs::is_directory(status))
+        throw InputError("--out", "", dir.string() + " exists and is not a directory");
+    if (fs::is_empty(dir, ec) || fs::exists(dir / marker, ec)) return;
+    throw InputError("--out", "",
+                     dir.string() + " is a folder without " + marker +
+                         ": the output replaces its folder as a whole, so give a new or empty "
+                         "folder, or an earlier output of the same command");
+}
+
+void write_tree(const Tree& t, const std::string& preset_name, const fs::path& dir) {
+    check_output_folder(dir, "tree.json");
+    auto files = tree_files(t, preset_name);
+    make_parent(dir);
+    PartialOutput tmp(dir);
+    write_tree_files(files, tmp.path(), dir);
+    tmp.commit();
+}
+
+void write_family(const std::vector<Tree>& trees, const std::string& preset_name,
+                  uint64_t base_seed, const fs::path& dir) {
+    check_output_folder(dir, "family.json");
+    make_parent(dir);
+    PartialOutput tmp(dir);
+    make_folder(tmp.path(), dir);
+    // Writing costs more than growing: members are converted and written in parallel, each into
+    // its own folder (OpenMesh's own formatting step takes one member at a time).
+    tbb::parallel_for(size_t(0), trees.size(), [&](size_t i) {
+        const std::string member = member_folder(preset_name, trees[i]);
+        write_tree_files(tree_files(trees[i], preset_name), tmp.path() / member, dir / member);
+    });
+    nlohmann::ordered_json index;
+    index["preset"] = preset_name;
+    index["base_seed"] = base_seed;
+    index["members"] = nlohmann::ordered_json::array();
+    for (const Tree& t : trees)
+        index["members"].push_back(
+            {{"index", t.id}, {"seed", t.seed}, {"dir", member_folder(preset_name, t)}});
+    write_new_file(tmp.path() / "family.json", index.dump(2) + "\n", dir / "family.json");
+    tmp.commit();
 }
 
 }  // namespace pleinair

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "generators/tree.h"
 
@@ -16,7 +17,20 @@ std::string leaves_ply(const LeafParticles& leaves, const glm::dvec3& origin);
 std::string tree_json(const Tree& tree, const std::string& preset_name);
 
 // Writes control.{obj,ply}, render.{obj,ply}, lod.{obj,ply} (when built), leaves.ply and
-// tree.json into `dir` (created), each file atomically. Throws std::runtime_error on failure.
+// tree.json into a temporary folder beside `dir`, renamed to `dir` once every file is written,
+// replacing an earlier tree folder there (PartialOutput::commit): the folder is complete or
+// absent. Throws InputError if `dir` may not be replaced (check_output_folder) and
+// std::runtime_error naming the file that failed; the temporary folder is removed then.
 void write_tree(const Tree& tree, const std::string& preset_name, const std::filesystem::path& dir);
+
+// A family's folder: per member a tree folder `PRESET-III-seed-SEED` and family.json listing
+// them, written into a temporary folder renamed to `dir` when complete, like write_tree.
+void write_family(const std::vector<Tree>& trees, const std::string& preset_name,
+                  uint64_t base_seed, const std::filesystem::path& dir);
+
+// Throws InputError unless `dir` is absent or a folder that a tree or family output may replace
+// as a whole: an empty one, or one holding `marker` ("tree.json", "family.json"). Anything else
+// is someone's folder, never deleted to make room.
+void check_output_folder(const std::filesystem::path& dir, const std::string& marker);
 
 }  // namespace pleinair

@@ -1,8 +1,6 @@
 // The tree, family and presets commands.
 #include "pipeline/cli/commands.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -35,10 +33,9 @@ TreeParams load(const std::string& preset, const std::vector<std::string>& set, 
     return p;
 }
 
-// Refuses an output path that exists and is not a directory, before any work is done.
-void check_out_dir(const std::string& out) {
-    if (!out.empty() && fs::exists(out) && !fs::is_directory(out))
-        throw InputError("--out", "", out + " exists and is not a directory");
+// Refuses an output folder that is not ours to replace, before any work is done.
+void check_out_dir(const std::string& out, const std::string& marker) {
+    if (!out.empty()) check_output_folder(out, marker);
 }
 
 nlohmann::ordered_json mesh_counts(const QuadMesh& m) {
@@ -50,7 +47,7 @@ nlohmann::ordered_json mesh_counts(const QuadMesh& m) {
 int run_tree(const TreeCommand& cmd) {
     std::string name;
     TreeParams params = load(cmd.preset, cmd.set, name);
-    check_out_dir(cmd.out);
+    check_out_dir(cmd.out, "tree.json");
     if (!cmd.position.empty() && cmd.position.size() != 3)
         throw InputError("--position", "", "expected x,y,z");
     if (!cmd.save_preset.empty()) write_file_atomic(cmd.save_preset, save_tree_params(params));
@@ -152,28 +149,11 @@ int run_family(const FamilyCommand& cmd) {
         if (!cmd.save_preset.empty()) write_file_atomic(cmd.save_preset, save_tree_params(params));
         return paint_sheet(cmd, params, name);
     }
-    check_out_dir(cmd.out);
+    check_out_dir(cmd.out, "family.json");
     if (!cmd.save_preset.empty()) write_file_atomic(cmd.save_preset, save_tree_params(params));
     if (cmd.out.empty()) return 0;
     std::vector<Tree> trees = generate_family(params, cmd.seed, cmd.count);
-    auto dir_of = [&](const Tree& t) {
-        char dir[64];
-        std::snprintf(dir, sizeof dir, "%s-%03u-seed-%llu", name.c_str(), t.id,
-                      static_cast<unsigned long long>(t.seed));
-        return std::string(dir);
-    };
-    // Writing costs more than growing: members are converted and written in parallel, each into
-    // its own folder (OpenMesh's own formatting step takes one member at a time).
-    tbb::parallel_for(size_t(0), trees.size(), [&](size_t i) {
-        write_tree(trees[i], name, fs::path(cmd.out) / dir_of(trees[i]));
-    });
-    nlohmann::ordered_json index;
-    index["preset"] = name;
-    index["base_seed"] = cmd.seed;
-    index["members"] = nlohmann::ordered_json::array();
-    for (const Tree& t : trees)
-        index["members"].push_back({{"index", t.id}, {"seed", t.seed}, {"dir", dir_of(t)}});
-    write_file_atomic(fs::path(cmd.out) / "family.json", index.dump(2) + "\n");
+    write_family(trees, name, cmd.seed, cmd.out);
     std::cout << "wrote " << trees.size() << " " << name << " trees to " << cmd.out << "\n";
     return 0;
 }

@@ -9,6 +9,7 @@
 #include "generators/tree.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/error.h"
+#include "pipeline/partial_files.h"
 
 int main(int argc, char** argv) {
     using namespace pleinair;
@@ -96,6 +97,8 @@ int main(int argc, char** argv) {
         return 2;
     }
     tree.lod = !no_lod;
+    // From here on outputs are written; an interrupted run removes its temporaries.
+    install_partial_cleanup();
 
     std::unique_ptr<tbb::global_control> limit;
     if (threads > 0)

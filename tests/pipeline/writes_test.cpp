@@ -1,0 +1,282 @@
+// Writes that never lie: temporaries' names, leftovers of killed runs, folders complete or absent,
+// the same bytes from the same frame, a full disk (a real tmpfs) and runs stopped by a signal.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/mount.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <thread>
+
+#include "pipeline/error.h"
+#include "pipeline/partial_files.h"
+#include "pipeline/tree_io.h"
+#include "pipeline/write_file.h"
+#include "test_util.h"
+
+extern char** environ;
+
+namespace pleinair {
+namespace {
+
+namespace fs = std::filesystem;
+using test::run_pleinair;
+
+void write_text(const fs::path& p, const std::string& s) {
+    std::ofstream(p, std::ios::binary) << s;
+}
+
+// Every name in `dir` and below that is a temporary.
+std::vector<std::string> partials_in(const fs::path& dir) {
+    std::vector<std::string> found;
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+        if (is_partial_name(e.path().filename().string())) found.push_back(e.path().string());
+    return found;
+}
+
+// A PID that was a process a moment ago and is none now.
+long dead_pid() {
+    pid_t child = ::fork();
+    if (child == 0) ::_exit(0);
+    ::waitpid(child, nullptr, 0);
+    return child;
+}
+
+TEST(PartialFiles, NamesAreRecognisedByOnePredicate) {
+    const std::string pid = std::to_string(::getpid());
+    EXPECT_EQ(partial_path("out/frame.png"), fs::path("out/.frame.png.partial-" + pid));
+    EXPECT_EQ(partial_path("out/tree/"), fs::path("out/.tree.partial-" + pid));
+    EXPECT_TRUE(is_partial_name(partial_path("a/x.exr").filename().string()));
+    EXPECT_TRUE(is_partial_name(".x.png.partial-12"));
+    EXPECT_TRUE(is_partial_name(".x.partial-12.png"));  // the older image form
+    EXPECT_TRUE(is_partial_name(".oak-001-seed-5.partial-7"));
+    EXPECT_EQ(partial_pid(".x.png.partial-4321"), 4321);
+    for (const char* real :
+         {"x.png", ".x.png", "x.png.partial-12", ".partial-12", ".x.partial-", ".x.partial-12a",
+          ".x.partial-0", ".x.partial-12.", ".x.partial-1.p-g"})
+        EXPECT_FALSE(is_partial_name(real)) << real;
+}
+
+// What a SIGKILL leaves: temporaries of a dead PID, files and folders. clear_partials removes
+// those and nothing else.
+TEST(PartialFiles, ClearPartialsRemovesDeadWritersLeftoversOnly) {
+    auto dir = test::temp_dir("clear-partials");
+    const std::string dead = std::to_string(dead_pid());
+    const std::string live = std::to_string(::getpid());
+    write_text(dir / (".x.png.partial-" + dead), "torn");
+    write_text(dir / (".x.partial-" + dead + ".png"), "torn");  // an older build's leftover
+    fs::create_directories(dir / (".tree.partial-" + dead) / "sub");
+    write_text(dir / (".tree.partial-" + dead) / "sub" / "render.obj", "v");
+    const std::vector<std::string> kept = {"x.png", ".hidden", "notes.partial-" + dead,
+                                           ".y.png.partial-" + live, ".z.partial-1"};  // init
+    for (const auto& name : kept) write_text(dir / name, name);
+    EXPECT_EQ(clear_partials(dir), 3u);
+    std::vector<std::string> left;
+    for (const auto& e : fs::directory_iterator(dir)) left.push_back(e.path().filename());
+    std::sort(left.begin(), left.end());
+    std::vector<std::string> expect = kept;
+    std::sort(expect.begin(), expect.end());
+    EXPECT_EQ(left, expect);
+    for (const auto& name : kept) EXPECT_EQ(test::read_file(dir / name), name);
+    EXPECT_EQ(clear_partials(dir / "absent"), 0u);
+    fs::remove_all(dir);
+}
+
+TEST(PartialFiles, FailedWriteLeavesNoTemporaryAndTheEarlierFile) {
+    auto dir = test::temp_dir("failed-write");
+    write_text(dir / "a.txt", "earlier");
+    write_file_atomic(dir / "a.txt", "later");
+    EXPECT_EQ(test::read_file(dir / "a.txt"), "later");
+    // A folder where the file should go: the rename fails after every byte was written.
+    fs::create_directories(dir / "b.txt" / "inside");
+    try {
+        write_file_atomic(dir / "b.txt", "bytes");
+        ADD_FAILURE() << "no error";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find((dir / "b.txt").string()), std::string::npos)
+            << e.what();
+    }
+    EXPECT_TRUE(fs::is_directory(dir / "b.txt" / "inside"));
+    EXPECT_EQ(partials_in(dir), std::vector<std::string>{});
+    fs::remove_all(dir);
+}
+
+// A tree's folder is replaced as a whole; a folder that is not a tree's is never touched.
+TEST(PartialFiles, TreeFolderReplacesAnEarlierOneWhole) {
+    auto dir = test::temp_dir("tree-replace");
+    Tree a = generate_tree(test::preset("shrub"), 1);
+    TreeOptions no_lod;
+    no_lod.lod = false;
+    Tree b = generate_tree(test::preset("shrub"), 2, no_lod);
+    write_tree(a, "shrub", dir / "t");
+    ASSERT_TRUE(fs::exists(dir / "t" / "lod.obj"));
+    write_tree(b, "shrub", dir / "t");
+    EXPECT_FALSE(fs::exists(dir / "t" / "lod.obj"));  // nothing of the earlier tree is left
+    EXPECT_EQ(test::read_file(dir / "t" / "tree.json"), tree_json(b, "shrub"));
+    fs::create_directories(dir / "mine");
+    write_text(dir / "mine" / "notes.txt", "keep");
+    EXPECT_THROW(write_tree(a, "shrub", dir / "mine"), InputError);
+    EXPECT_EQ(test::read_file(dir / "mine" / "notes.txt"), "keep");
+    auto r = run_pleinair("tree --preset shrub -o " + (dir / "mine").string());
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(partials_in(dir), std::vector<std::string>{});
+    fs::remove_all(dir);
+}
+
+// Same inputs, same bytes: no header carries the time the file was written.
+TEST(Writes, SameFrameTwiceGivesIdenticalBytesInEveryFormat) {
+    auto dir = test::temp_dir("same-bytes");
+    for (const char* name : {"a.png", "a.tif", "a.exr"}) {
+        std::string files[2];
+        for (int i = 0; i < 2; ++i) {
+            auto r = run_pleinair("render tests/golden/oak-study/scene.json -o " +
+                                  (dir / name).string());
+            ASSERT_EQ(r.exit_code, 0) << r.err;
+            files[i] = test::read_file(dir / name);
+            // The TIFF and EXR writers stamp the time to the second.
+            if (i == 0) std::this_thread::sleep_for(std::chrono::milliseconds(1100));
+        }
+        EXPECT_GT(files[0].size(), 1000u) << name;
+        EXPECT_TRUE(files[0] == files[1]) << name << " differs between two runs";
+    }
+    fs::remove_all(dir);
+}
+
+// A 64 KiB tmpfs mounted for the test and filled to the brim: what a full disk does to every
+// kind of output. Needs root (CI runs it as root); skips saying so otherwise.
+class FullDisk : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir_ = test::temp_dir("full-disk");
+        if (::geteuid() != 0)
+            GTEST_SKIP() << "skipped: mounting a tmpfs needs root (running as uid " << ::geteuid()
+                         << "); CI runs this test as root";
+        if (::mount("tmpfs", dir_.c_str(), "tmpfs", 0, "size=64k") != 0)
+            GTEST_SKIP() << "skipped: cannot mount a tmpfs on " << dir_ << ": "
+                         << std::strerror(errno) << " (a container without CAP_SYS_ADMIN?)";
+        mounted_ = true;
+    }
+    void TearDown() override {
+        if (mounted_ && ::umount(dir_.c_str()) != 0)
+            ADD_FAILURE() << "cannot unmount " << dir_ << ": " << std::strerror(errno);
+        fs::remove_all(dir_);
+    }
+    // Takes every free byte left.
+    void fill() {
+        const int fd = ::open((dir_ / "fill").c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+        ASSERT_GE(fd, 0);
+        const std::string chunk(512, 'x');
+        while (::write(fd, chunk.data(), chunk.size()) > 0) {
+        }
+        ::close(fd);
+    }
+    // A failed run: exit 1, one line naming `target`, no temporary left.
+    void expect_failed(const test::RunResult& r, const fs::path& target) {
+        EXPECT_EQ(r.exit_code, 1) << r.err;
+        EXPECT_NE(r.err.find(target.string()), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
+        EXPECT_EQ(partials_in(dir_), std::vector<std::string>{});
+    }
+    fs::path dir_;
+    bool mounted_ = false;
+};
+
+TEST_F(FullDisk, ImagesFailNamingTheFileAndLeaveTheEarlierOneByteIdentical) {
+    const std::string small = " --set /camera/width=16 --set /camera/height=16";
+    for (const char* name : {"x.png", "x.tif", "x.exr"}) {
+        auto r = run_pleinair("render tests/golden/oak-study/scene.json -o " +
+                              (dir_ / name).string() + small);
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+    }
+    std::map<std::string, std::string> earlier;
+    for (const char* name : {"x.png", "x.tif", "x.exr"})
+        earlier[name] = test::read_file(dir_ / name);
+    fill();
+    for (const char* name : {"x.png", "x.tif", "x.exr"}) {
+        auto r =
+            run_pleinair("render tests/golden/oak-study/scene.json -o " + (dir_ / name).string());
+        expect_failed(r, dir_ / name);
+        EXPECT_TRUE(test::read_file(dir_ / name) == earlier[name]) << name << " was changed";
+    }
+    // A contact sheet over the earlier PNG.
+    auto r = run_pleinair("family --preset oak --count 2 --width 320 --height 240 -o " +
+                          (dir_ / "x.png").string());
+    expect_failed(r, dir_ / "x.png");
+    EXPECT_TRUE(test::read_file(dir_ / "x.png") == earlier["x.png"]);
+}
+
+TEST_F(FullDisk, TreeAndFamilyFoldersAreCompleteOrAbsent) {
+    // An earlier tree folder (a stand-in small enough for the disk) survives a failed write.
+    fs::create_directories(dir_ / "earlier");
+    write_text(dir_ / "earlier" / "tree.json", "{\"earlier\": true}\n");
+    fill();
+    auto tree = run_pleinair("tree --preset shrub -o " + (dir_ / "tree").string());
+    expect_failed(tree, dir_ / "tree");
+    EXPECT_FALSE(fs::exists(dir_ / "tree"));
+    tree = run_pleinair("tree --preset shrub -o " + (dir_ / "earlier").string());
+    expect_failed(tree, dir_ / "earlier");
+    EXPECT_EQ(test::read_file(dir_ / "earlier" / "tree.json"), "{\"earlier\": true}\n");
+    auto family = run_pleinair("family --preset shrub --count 3 -o " + (dir_ / "fam").string());
+    expect_failed(family, dir_ / "fam");
+    EXPECT_FALSE(fs::exists(dir_ / "fam"));
+}
+
+// Starts pleinair with `args`, output discarded; returns its PID.
+pid_t spawn_pleinair(const std::vector<std::string>& args) {
+    std::vector<char*> argv;
+    std::string bin = PLEINAIR_BIN;
+    argv.push_back(bin.data());
+    std::vector<std::string> copy = args;
+    for (auto& a : copy) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+    pid_t pid = -1;
+    if (posix_spawn(&pid, bin.c_str(), &actions, nullptr, argv.data(), environ) != 0) pid = -1;
+    posix_spawn_file_actions_destroy(&actions);
+    return pid;
+}
+
+// SIGTERM and SIGINT while a family is being written: the run ends by that signal and its
+// temporary folder, with every member written so far, is gone.
+TEST(Signals, SigtermAndSigintRemoveTheTemporaries) {
+    for (int sig : {SIGTERM, SIGINT}) {
+        auto dir = test::temp_dir("signal-" + std::to_string(sig));
+        pid_t pid = spawn_pleinair(
+            {"family", "--preset", "shrub", "--count", "400", "-o", (dir / "fam").string()});
+        ASSERT_GT(pid, 0);
+        // Members are written into the temporary folder for seconds; signal once it holds a few.
+        const fs::path tmp = dir / (".fam.partial-" + std::to_string(pid));
+        bool writing = false;
+        for (int i = 0; i < 600 && !writing; ++i) {
+            std::error_code ec;
+            writing = fs::exists(tmp) &&
+                      std::distance(fs::directory_iterator(tmp, ec), fs::directory_iterator()) >= 3;
+            if (!writing) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        }
+        EXPECT_TRUE(writing) << "no temporary folder appeared in 30 s";
+        ::kill(pid, sig);
+        int status = 0;
+        ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+        const bool by_signal = WIFSIGNALED(status) && WTERMSIG(status) == sig;
+        const bool by_code = WIFEXITED(status) && WEXITSTATUS(status) == 128 + sig;
+        EXPECT_TRUE(by_signal || by_code) << "signal " << sig << ": status " << status;
+        EXPECT_EQ(partials_in(dir), std::vector<std::string>{}) << "signal " << sig;
+        EXPECT_FALSE(fs::exists(dir / "fam"));
+        fs::remove_all(dir);
+    }
+}
+
+}  // namespace
+}  // namespace pleinair
