@@ -7,6 +7,7 @@
 #include <cmath>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -74,6 +75,27 @@ inline size_t edit_distance(const std::string& a, const std::string& b) {
         }
     }
     return row[b.size()];
+}
+
+// "\"a\", \"b\" or \"c\"": the names of a choice, for messages and the reference.
+template <class Names>
+std::string choice_list(const Names& names) {
+    std::string out;
+    size_t i = 0, n = std::size(names);
+    for (const auto& [value, name] : names) {
+        if (i > 0) out += i + 1 == n ? " or " : ", ";
+        out += json(name).dump();
+        ++i;
+    }
+    return out;
+}
+
+// The name of `x` in a choice's names.
+template <class E, class Names>
+std::string choice_name(E x, const Names& names) {
+    for (const auto& [value, name] : names)
+        if (value == x) return name;
+    return "";
 }
 
 // Reads the keys the table asks for; what the table never asked for is an unknown key.
@@ -197,6 +219,23 @@ class Reader {
         if (!v->is_string()) return fail(key, "expected a string, got " + describe(*v));
         x = v->get<std::string>();
     }
+    // One of a fixed set of names (pairs of value and name), read once into its enum.
+    template <class E, class Names>
+    void choice(const char* key, E& x, const Names& names, const char*) {
+        const json* v = find(key);
+        if (!v) return;
+        if (v->is_string())
+            for (const auto& [value, name] : names)
+                if (v->get_ref<const std::string&>() == name) {
+                    x = value;
+                    return;
+                }
+        fail(key, "expected " + choice_list(names) + ", got " + describe(*v));
+    }
+    // The key must be present in the current object (read by the call that follows).
+    void require(const char* key) {
+        if (!frames_.back().obj->contains(key)) fail(key, "missing: this key is required");
+    }
 
   private:
     struct Frame {
@@ -269,6 +308,11 @@ class Writer {
     void color(const char* key, const glm::vec3& x, const char*) {
         (*stack_.back())[key] = {x.x, x.y, x.z};
     }
+    template <class E, class Names>
+    void choice(const char* key, E x, const Names& names, const char*) {
+        (*stack_.back())[key] = choice_name(x, names);
+    }
+    void require(const char*) {}
 
   private:
     std::vector<ordered_json*> stack_;
@@ -323,9 +367,16 @@ class Documenter {
     void color(const char* key, const glm::vec3& x, const char* doc) {
         row(here() + "/" + key, format_vector(x.x, x.y, x.z), "[0, 1]", "sRGB", doc);
     }
+    template <class E, class Names>
+    void choice(const char* key, E x, const Names& names, const char* doc) {
+        row(here() + "/" + key, json(choice_name(x, names)).dump(), choice_list(names), "", doc);
+    }
+    // The next row is of a required key: "required" stands for its default.
+    void require(const char* key) { required_ = here() + "/" + key; }
 
   private:
     std::vector<std::string> path_;
+    std::string required_;
     std::string here() const {
         std::string ptr;
         for (const auto& p : path_) ptr += "/" + p;
@@ -333,8 +384,13 @@ class Documenter {
     }
     void row(const std::string& ptr, const std::string& def, const std::string& range,
              const std::string& unit, const std::string& doc) {
-        out << "| `" << ptr << "` | " << (def.empty() ? "" : "`" + def + "`") << " | " << range
-            << " | " << unit << " | " << doc << " |\n";
+        const bool required = ptr == required_;
+        if (required) required_.clear();
+        out << "| `" << ptr << "` | "
+            << (required      ? "required"
+                : def.empty() ? ""
+                              : "`" + def + "`")
+            << " | " << range << " | " << unit << " | " << doc << " |\n";
     }
 };
 
