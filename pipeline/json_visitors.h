@@ -7,6 +7,7 @@
 #include <cmath>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -76,29 +77,28 @@ inline size_t edit_distance(const std::string& a, const std::string& b) {
     return row[b.size()];
 }
 
-// Reads the keys the table asks for; what the table never asked for is an unknown key.
-// The names a JSON string may take for an enum, in the order the reference lists them.
-template <class E>
-using Choices = std::vector<std::pair<const char*, E>>;
-
-template <class E>
-std::string describe_choices(const Choices<E>& names) {
+// "\"a\", \"b\" or \"c\"": the names of a choice, for messages and the reference.
+template <class Names>
+std::string choice_list(const Names& names) {
     std::string out;
-    for (size_t i = 0; i < names.size(); ++i)
-        out.append(i == 0 ? "" : i + 1 == names.size() ? " or " : ", ")
-            .append("\"")
-            .append(names[i].first)
-            .append("\"");
+    size_t i = 0, n = std::size(names);
+    for (const auto& [value, name] : names) {
+        if (i > 0) out += i + 1 == n ? " or " : ", ";
+        out += json(name).dump();
+        ++i;
+    }
     return out;
 }
 
-template <class E>
-const char* choice_name(E x, const Choices<E>& names) {
-    for (const auto& [name, value] : names)
+// The name of `x` in a choice's names.
+template <class E, class Names>
+std::string choice_name(E x, const Names& names) {
+    for (const auto& [value, name] : names)
         if (value == x) return name;
     return "";
 }
 
+// Reads the keys the table asks for; what the table never asked for is an unknown key.
 class Reader {
   public:
     // `prefix` is the JSON pointer of `root` in its file, for objects inside arrays.
@@ -219,18 +219,22 @@ class Reader {
         if (!v->is_string()) return fail(key, "expected a string, got " + describe(*v));
         x = v->get<std::string>();
     }
-    // One of a few named values, parsed once into its enum.
-    template <class E>
-    void choice(const char* key, E& x, const Choices<E>& names, const char*) {
+    // One of a fixed set of names (pairs of value and name), read once into its enum.
+    template <class E, class Names>
+    void choice(const char* key, E& x, const Names& names, const char*) {
         const json* v = find(key);
         if (!v) return;
         if (v->is_string())
-            for (const auto& [name, value] : names)
-                if (v->get<std::string>() == name) {
+            for (const auto& [value, name] : names)
+                if (v->get_ref<const std::string&>() == name) {
                     x = value;
                     return;
                 }
-        fail(key, "expected " + describe_choices(names) + ", got " + describe(*v));
+        fail(key, "expected " + choice_list(names) + ", got " + describe(*v));
+    }
+    // The key must be present in the current object (read by the call that follows).
+    void require(const char* key) {
+        if (!frames_.back().obj->contains(key)) fail(key, "missing: this key is required");
     }
 
   private:
@@ -298,16 +302,17 @@ class Writer {
     void seed(const char* key, uint64_t x, const char*) { (*stack_.back())[key] = x; }
     void claim(const char*) {}
     void text(const char* key, const std::string& x, const char*) { (*stack_.back())[key] = x; }
-    template <class E>
-    void choice(const char* key, E x, const Choices<E>& names, const char*) {
-        (*stack_.back())[key] = choice_name(x, names);
-    }
     void real(const char* key, float x, Range, const char*, const char*) {
         (*stack_.back())[key] = x;
     }
     void color(const char* key, const glm::vec3& x, const char*) {
         (*stack_.back())[key] = {x.x, x.y, x.z};
     }
+    template <class E, class Names>
+    void choice(const char* key, E x, const Names& names, const char*) {
+        (*stack_.back())[key] = choice_name(x, names);
+    }
+    void require(const char*) {}
 
   private:
     std::vector<ordered_json*> stack_;
@@ -356,20 +361,22 @@ class Documenter {
     void text(const char* key, const std::string& x, const char* doc) {
         row(here() + "/" + key, json(x).dump(), "", "", doc);
     }
-    template <class E>
-    void choice(const char* key, E x, const Choices<E>& names, const char* doc) {
-        row(here() + "/" + key, json(choice_name(x, names)).dump(), describe_choices(names), "",
-            doc);
-    }
     void real(const char* key, float x, Range r, const char* unit, const char* doc) {
         row(here() + "/" + key, format_number(x), format_range(r.lo, r.hi), unit, doc);
     }
     void color(const char* key, const glm::vec3& x, const char* doc) {
         row(here() + "/" + key, format_vector(x.x, x.y, x.z), "[0, 1]", "sRGB", doc);
     }
+    template <class E, class Names>
+    void choice(const char* key, E x, const Names& names, const char* doc) {
+        row(here() + "/" + key, json(choice_name(x, names)).dump(), choice_list(names), "", doc);
+    }
+    // The next row is of a required key: "required" stands for its default.
+    void require(const char* key) { required_ = here() + "/" + key; }
 
   private:
     std::vector<std::string> path_;
+    std::string required_;
     std::string here() const {
         std::string ptr;
         for (const auto& p : path_) ptr += "/" + p;
@@ -377,8 +384,13 @@ class Documenter {
     }
     void row(const std::string& ptr, const std::string& def, const std::string& range,
              const std::string& unit, const std::string& doc) {
-        out << "| `" << ptr << "` | " << (def.empty() ? "" : "`" + def + "`") << " | " << range
-            << " | " << unit << " | " << doc << " |\n";
+        const bool required = ptr == required_;
+        if (required) required_.clear();
+        out << "| `" << ptr << "` | "
+            << (required      ? "required"
+                : def.empty() ? ""
+                              : "`" + def + "`")
+            << " | " << range << " | " << unit << " | " << doc << " |\n";
     }
 };
 

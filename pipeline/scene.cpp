@@ -113,14 +113,60 @@ void visit_group(TreeGroup& g, V& v) {
     v.integer("max_trees", p.max_trees, {0, 100000}, "At most this many trees.");
 }
 
-const Choices<ShadowMode> kShadowModes = {{"transmissive", ShadowMode::kTransmissive},
-                                          {"threshold", ShadowMode::kThreshold}};
-const Choices<ShadowSamples> kShadowSamples = {{"particle", ShadowSamples::kParticle},
-                                              {"fragment", ShadowSamples::kFragment}};
+const std::pair<TrackInterpolation, const char*> kInterpolations[] = {
+    {TrackInterpolation::kCatmullRom, interpolation_name(TrackInterpolation::kCatmullRom)},
+    {TrackInterpolation::kLinear, interpolation_name(TrackInterpolation::kLinear)},
+};
+
+template <class V>
+void visit_camera_key(CameraKey& k, V& v) {
+    v.require("time");
+    v.number("time", k.time, {0, 1e6}, "s",
+             "When the camera is here; keys in increasing time (frame F is at (F - 1) / fps).");
+    v.require("position");
+    v.vector("position", k.position, "world units", "Where the camera stands.");
+    v.require("look_at");
+    v.vector("look_at", k.look_at, "world units",
+             "The point it looks at (not the position); interpolated like the position.");
+    v.vector("up", k.up, "", "Up direction; absent: /camera/up. Interpolated, then normalised.");
+    v.number("fov", k.fov, {1e-3, 179}, "deg",
+             "Vertical field of view; absent: /camera/fov. Interpolated by a monotone cubic in "
+             "time, never beyond the two keys it lies between.");
+    v.number("ease_in", k.ease_in, {0, 1}, "",
+             "Slows the approach to this key: 1 arrives at rest, 0 runs through at the spline's "
+             "speed (no velocity jump at the key), values between blend.");
+    v.number("ease_out", k.ease_out, {0, 1}, "", "Slows the departure from this key, likewise.");
+    v.number("leaf_near", k.leaf_near, {0, 1e9}, "world units",
+             "Level-of-detail circle of the leaves, near side; 0: not set. A circle is set on "
+             "every key or none, and is interpolated like the fov.");
+    v.number("leaf_far", k.leaf_far, {0, 1e9}, "world units",
+             "The leaves' far circle; 0: not set; >= leaf_near.");
+    v.number("trunk_near", k.trunk_near, {0, 1e9}, "world units",
+             "Level-of-detail circle of trunks and branches, near side; 0: not set.");
+    v.number("trunk_far", k.trunk_far, {0, 1e9}, "world units",
+             "Their far circle; 0: not set; >= trunk_near.");
+}
+
+template <class V>
+void visit_sun_key(SunKey& k, V& v) {
+    v.require("time");
+    v.number("time", k.time, {0, 1e6}, "s", "When the sun is here; keys in increasing time.");
+    v.require("direction");
+    v.vector("direction", k.direction, "",
+             "Direction towards the sun; between keys, along the great circle (slerp).");
+}
+
+const std::pair<ShadowMode, const char*> kShadowModes[] = {
+    {ShadowMode::kTransmissive, "transmissive"}, {ShadowMode::kThreshold, "threshold"}};
+const std::pair<ShadowSamples, const char*> kShadowSamples[] = {
+    {ShadowSamples::kParticle, "particle"}, {ShadowSamples::kFragment, "fragment"}};
 
 template <class V>
 void visit_scene(SceneDesc& s, V& v) {
     v.text("description", s.description, "One line on what the scene shows.");
+    v.number("fps", s.fps, {1e-3, 1000}, "frames/s",
+             "Frames per second of an animated scene (one with a camera or a sun track): frame "
+             "N, counted from 1, is at (N - 1) / fps seconds.");
     CameraParams& c = s.camera_params;
     v.object("camera", "The perspective camera", [&] {
         v.vector("position", c.position, "world units", "Where the camera stands.");
@@ -131,8 +177,17 @@ void visit_scene(SceneDesc& s, V& v) {
         v.number("fov", c.fov, {1e-3, 179}, "deg", "Vertical field of view.");
         v.integer("width", c.width, {1, 16384}, "Image width in pixels.");
         v.integer("height", c.height, {1, 16384}, "Image height in pixels.");
+        v.claim("track");
+        v.choice("interpolation", s.camera_track.interpolation, kInterpolations,
+                 "How the track runs through its keys: centripetal Catmull-Rom (no loops or "
+                 "overshoot at uneven spacing, no velocity jump at a key) or straight lines.");
+        v.boolean("constant_speed", s.camera_track.constant_speed,
+                  "The camera moves at one speed along the whole track's path, from the first "
+                  "key's time to the last's: interior keys are passed through, not at their "
+                  "times, and only the first key's ease_out and the last's ease_in apply.");
     });
     v.object("sun", "The one light (IV.4.1)", [&] {
+        v.claim("track");
         v.vector("direction", s.sun_direction, "", "Direction towards the sun; normalised.");
         v.boolean("casts_shadows", s.sun_casts_shadows,
                   "Trace shadow rays: trunks, terrain, rocks and the leaf strokes themselves "
@@ -380,6 +435,58 @@ void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
               });
 }
 
+// The camera's and the sun's tracks (`/camera/track`, `/sun/track`): lists of keys, each read
+// by its key table; a track whose keys could all be read is then validated as a whole.
+void parse_tracks(const json& doc, SceneDesc& s, std::vector<Problem>& problems,
+                  std::set<std::string>& plain) {
+    auto track_of = [&](const char* object) -> const json* {
+        auto it = doc.find(object);
+        if (it == doc.end() || !it->is_object()) return nullptr;
+        auto track = it->find("track");
+        return track == it->end() ? nullptr : &*track;
+    };
+    // Every element an object with its required keys: then the track's own checks make sense.
+    auto complete = [](const json& list, std::initializer_list<const char*> required) {
+        if (!list.is_array()) return false;
+        for (const json& j : list) {
+            if (!j.is_object()) return false;
+            for (const char* key : required)
+                if (!j.contains(key)) return false;
+        }
+        return true;
+    };
+    if (const json* list = track_of("camera")) {
+        read_list(doc.at("camera"), "track", "/camera/track", problems, plain,
+                  [&](const json&, Reader& r, const std::string&) {
+                      CameraKey key;
+                      key.up = s.camera_params.up;
+                      key.fov = s.camera_params.fov;
+                      visit_camera_key(key, r);
+                      s.camera_track.keys.push_back(key);
+                  });
+        if (complete(*list, {"time", "position", "look_at"})) {
+            auto found = validate_track(s.camera_track, "/camera/track");
+            problems.insert(problems.end(), found.begin(), found.end());
+            if (found.empty())
+                for (CameraKey& k : s.camera_track.keys) k.up = glm::normalize(k.up);
+        }
+    }
+    if (const json* list = track_of("sun")) {
+        read_list(doc.at("sun"), "track", "/sun/track", problems, plain,
+                  [&](const json&, Reader& r, const std::string&) {
+                      SunKey key;
+                      visit_sun_key(key, r);
+                      s.sun_track.push_back(key);
+                  });
+        if (complete(*list, {"time", "direction"})) {
+            auto found = validate_sun_track(s.sun_track, "/sun/track");
+            problems.insert(problems.end(), found.begin(), found.end());
+            if (found.empty())
+                for (SunKey& k : s.sun_track) k.direction = glm::normalize(k.direction);
+        }
+    }
+}
+
 // Groups scattered over the terrain; each names families with weights.
 void parse_groups(const json& doc, SceneDesc& s, std::vector<Problem>& problems,
                   std::set<std::string>& plain) {
@@ -434,6 +541,7 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
     visit_scene(s, reader);
     for (const char* key : {"families", "trees", "materials", "rocks", "groups"}) reader.claim(key);
     reader.finish();
+    parse_tracks(doc, s, problems, plain);
     parse_landscape(doc, source, s, problems, plain);
 
     if (std::string why = make_camera(s.camera_params, s.camera); !why.empty())
@@ -588,6 +696,20 @@ std::string scene_reference() {
     d.out << "| key | default | range | unit | meaning |\n|---|---|---|---|---|\n";
     SceneDesc defaults;
     visit_scene(defaults, d);
+    d.object("camera/track/N",
+             "One key of the camera track, a list of at least two (absent: a still)", [&] {
+                 CameraKey k;
+                 k.up = defaults.camera_params.up;
+                 k.fov = defaults.camera_params.fov;
+                 visit_camera_key(k, d);
+             });
+    d.object("sun/track/N",
+             "One key of the sun's track, a list of at least two (absent: a sun "
+             "that stays at /sun/direction)",
+             [&] {
+                 SunKey k;
+                 visit_sun_key(k, d);
+             });
     d.object("terrain/hills/N", "One hill of the terrain's list", [&] {
         Hill h;
         visit_hill(h, d);

@@ -13,6 +13,7 @@
 #include "generators/terrain.h"
 #include "generators/tree_params.h"
 #include "pipeline/camera.h"
+#include "pipeline/camera_track.h"
 #include "pipeline/settings.h"
 #include "shading/color.h"
 #include "shading/stroke_shader.h"
@@ -117,9 +118,12 @@ struct PlacedTree {
 
 struct SceneDesc {
     std::string description;
+    double fps = 24;  // frame N of an animated scene is at (N - 1) / fps seconds
     CameraParams camera_params;
     Camera camera;
+    CameraTrack camera_track;                  // keys empty: a still, seen from camera_params
     glm::dvec3 sun_direction{-0.5, 0.8, 0.4};  // towards the sun, unit
+    std::vector<SunKey> sun_track;             // empty: the sun stays at sun_direction
     bool sun_casts_shadows = false;
     Background background;
     bool has_atmosphere = false;
@@ -134,6 +138,9 @@ struct SceneDesc {
     WaterDesc water;
     std::vector<RockDesc> rocks;
     std::vector<TreeGroup> groups;
+
+    // A camera or a sun track: frames differ with time.
+    bool animated() const { return !camera_track.keys.empty() || !sun_track.empty(); }
 };
 
 // Throws InputError listing every problem (file, JSON pointer, expected, found).
