@@ -6,7 +6,7 @@ SAN_BUILD ?= build-sanitize
 JOBS ?= $(shell nproc)
 DEPS := build-essential cmake ninja-build libopenmesh-dev libglm-dev libopenimageio-dev \
         openimageio-tools libembree-dev libtbb-dev nlohmann-json3-dev libcli11-dev \
-        libgtest-dev libbenchmark-dev libhwy-dev
+        libgtest-dev libbenchmark-dev libhwy-dev ffmpeg
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 .PHONY: all deps build render test test-sanitize bench format reference golden clean

@@ -1,6 +1,8 @@
 // paint_frame: the frame's stages in order, each timed for --explain.
 #include "pipeline/paint.h"
 
+#include <stdexcept>
+
 #include "pipeline/bin.h"
 #include "pipeline/composite.h"
 #include "pipeline/sprites.h"
@@ -15,6 +17,25 @@ FrameSettings scene_frame_settings(const SceneDesc& scene, bool aovs) {
 }
 
 FrameView still_view(const SceneDesc& scene) { return {scene.camera, scene.sun_direction}; }
+
+FrameView view_at(const SceneDesc& scene, double t) {
+    FrameView v = still_view(scene);
+    if (!scene.camera_track.keys.empty()) {
+        const CameraParams p = camera_at(scene.camera_track, scene.camera_params, t);
+        if (std::string why = make_camera(p, v.camera); !why.empty())
+            throw std::runtime_error("the camera track at " + std::to_string(t) + " s: " + why);
+    }
+    if (!scene.sun_track.empty()) v.sun_direction = sun_at(scene.sun_track, t);
+    return v;
+}
+
+FrameRange animation_frames(const SceneDesc& scene) {
+    CameraTrack times = scene.camera_track;
+    if (times.keys.empty())
+        for (const SunKey& k : scene.sun_track) times.keys.push_back({k.time});
+    if (times.keys.empty()) return {1, 1, 1};
+    return {track_first_frame(times, scene.fps), track_last_frame(times, scene.fps), 1};
+}
 
 Frame paint_frame(const Shot& shot, const FrameView& view, const FrameSettings& settings,
                   FrameReport* report) {

@@ -9,6 +9,7 @@
 
 #include "pipeline/frame.h"
 #include "pipeline/frame_plan.h"
+#include "pipeline/frame_range.h"
 #include "pipeline/report.h"
 #include "pipeline/shot.h"
 
@@ -27,6 +28,15 @@ FrameSettings scene_frame_settings(const SceneDesc& scene, bool aovs = false);
 
 // The view of a still: the scene's camera and sun.
 FrameView still_view(const SceneDesc& scene);
+
+// The view at t seconds: the camera track's camera and the sun's keyed direction, where the
+// scene has them (a still's otherwise). Throws std::runtime_error if the track's camera is
+// degenerate there (its look-at passing through its position).
+FrameView view_at(const SceneDesc& scene, double t);
+
+// The frames of an animated scene: those whose times lie within its camera track, or within its
+// sun track when it has no camera track; frame 1 alone for a still.
+FrameRange animation_frames(const SceneDesc& scene);
 
 Frame paint_frame(const Shot& shot, const FrameView& view, const FrameSettings& settings,
                   FrameReport* report = nullptr);

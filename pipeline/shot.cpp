@@ -22,7 +22,7 @@ ShotPlan plan_shot(const SceneDesc& scene, const ShotOptions& options) {
     plan.bark = options.bark && scene.build.bark_coverage > 0;
     const bool meshes = scene.terrain.present || !scene.rocks.empty();
     plan.shadows = scene.sun_casts_shadows && (meshes || !scene.trees.empty());
-    plan.sun_moves = false;  // MERGE: a keyed sun (scene.sun_track) moves
+    plan.sun_moves = plan.shadows && !scene.sun_track.empty();
     plan.underpaint = meshes;
     plan.sun_light = plan.shadows && !plan.sun_moves && options.cache_sun_light &&
                      scene.render.shadow_samples == ShadowSamples::kParticle;
@@ -207,7 +207,9 @@ Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> t
     shot.trees = std::move(trees);
     shot.land = std::move(land);
     shot.materials = MaterialTable(shot.scene);
-    shot.anchor = shot.scene.camera.eye;
+    // Near where the camera is: the still camera, or the track's first key.
+    shot.anchor = shot.scene.camera_track.keys.empty() ? shot.scene.camera.eye
+                                                       : shot.scene.camera_track.keys[0].position;
     for (const BuiltTree& b : *shot.trees) shot.placements.push_back(placement(b));
     // Surface strokes' rays start above the deepest strokes, so none is hidden or shadowed by
     // the very ground it was emitted from.

@@ -39,6 +39,22 @@ struct RenderCommand {
     bool explain = false;          // print the frame's plan, pass times and counts
     bool aovs = false;             // EXR depth, object id, alpha and lightness channels
     std::vector<std::string> set;  // "POINTER=VALUE" overrides of the scene
+    std::optional<double> time;    // seconds into an animated scene
+    std::optional<int> frame;      // or a frame of it (from 1, at the scene's fps)
+};
+
+struct AnimateCommand {
+    std::string scene;
+    std::string frames;  // "A-B" or "A-BxSTEP"; empty: every frame of the track
+    std::string out;     // frame files: a run of # (or %04d) is the frame number
+    bool resume = false;     // keep the frames already complete, clear dead runs' temporaries
+    std::string video;       // encode the frames into this .mp4 with ffmpeg
+    bool preview = false;    // half resolution
+    bool aovs = false;
+    bool explain = false;    // the shot's passes, then each frame's total
+    std::vector<std::string> set;
+    // Progress: a bar on a terminal, else the lines render farms parse. Tests force either.
+    enum class Progress { kAuto, kBar, kLog } progress = Progress::kAuto;
 };
 
 struct BenchCommand {
@@ -57,6 +73,7 @@ int run_tree(const TreeCommand& cmd);
 int run_family(const FamilyCommand& cmd);
 int run_presets(const PresetsCommand& cmd);
 int run_render(const RenderCommand& cmd);
+int run_animate(const AnimateCommand& cmd);
 int run_bench_accuracy(const BenchCommand& cmd);
 
 }  // namespace pleinair

@@ -69,6 +69,33 @@ int main(int argc, char** argv) {
                 "Print the frame's plan: passes run or skipped and why, times, counts");
     r->add_flag("--aovs", render.aovs, "Add depth, object id, alpha, lightness channels (EXR)");
     r->add_option("--set", render.set, "Override a scene key: POINTER=VALUE, e.g. /camera/fov=30");
+    double render_time = 0;
+    int render_frame = 0;
+    auto* r_time = r->add_option("--time", render_time,
+                                 "Seconds into an animated scene (its camera and sun tracks)");
+    auto* r_frame = r->add_option("--frame", render_frame,
+                                  "Frame of an animated scene, from 1 at the scene's fps");
+
+    AnimateCommand animate;
+    auto* a = app.add_subcommand(
+        "animate", "Paint the frames of an animated scene: one shot, then each frame in turn");
+    a->add_option("scene", animate.scene, "Scene name (presets/scenes) or JSON file")->required();
+    a->add_option("-o,--out", animate.out,
+                  "Frame files; a run of # (or %04d) is the frame number: out/frame_####.png")
+        ->required();
+    a->add_option("--frames", animate.frames,
+                  "Frames A-B or A-BxSTEP, from 1 (default: every frame of the track)");
+    a->add_flag("--resume", animate.resume,
+                "Keep frames already complete; clear temporaries left by killed runs");
+    a->add_option("--video", animate.video, "Also encode the frames into FILE.mp4 (ffmpeg, H.264)");
+    a->add_flag("--preview", animate.preview, "Half resolution, for a quick look");
+    a->add_flag("--aovs", animate.aovs, "Add depth, object id, alpha, lightness channels (EXR)");
+    a->add_flag("--explain", animate.explain, "Print the shot's passes and the first frame's plan");
+    a->add_option("--set", animate.set, "Override a scene key: POINTER=VALUE");
+    std::string progress = "auto";
+    a->add_option("--progress", progress,
+                  "auto: a bar on a terminal, else Progress/Saved lines; bar; log")
+        ->check(CLI::IsMember({"auto", "bar", "log"}));
 
     BenchCommand bench;
     auto* b = app.add_subcommand("bench", "Measure what accuracy costs in time");
@@ -97,6 +124,11 @@ int main(int argc, char** argv) {
         return 2;
     }
     tree.lod = !no_lod;
+    if (*r_time) render.time = render_time;
+    if (*r_frame) render.frame = render_frame;
+    animate.progress = progress == "bar"   ? AnimateCommand::Progress::kBar
+                       : progress == "log" ? AnimateCommand::Progress::kLog
+                                           : AnimateCommand::Progress::kAuto;
     // From here on outputs are written; an interrupted run removes its temporaries.
     install_partial_cleanup();
 
@@ -109,6 +141,7 @@ int main(int argc, char** argv) {
         if (*f) return run_family(family);
         if (*p) return run_presets(presets);
         if (*r) return run_render(render);
+        if (*a) return run_animate(animate);
         if (*b) return run_bench_accuracy(bench);
     } catch (const InputError& e) {
         std::cerr << e.what() << "\n";

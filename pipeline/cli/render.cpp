@@ -23,6 +23,36 @@ void print_pass(const PassReport& p) {
         std::printf("    %-18s   skipped     %s\n", p.name.c_str(), p.why.c_str());
 }
 
+// The time of the frame to paint: --time, --frame, or an animated scene's first frame.
+double frame_time_of(const RenderCommand& cmd, const SceneDesc& scene, const std::string& file) {
+    if (cmd.time && cmd.frame) throw InputError("--time", "", "give --time or --frame, not both");
+    if ((cmd.time || cmd.frame) && !scene.animated())
+        throw InputError(file, "/camera/track",
+                         "--time and --frame need a camera or sun track; the scene is a still");
+    const FrameRange frames = animation_frames(scene);
+    if (cmd.frame) {
+        if (*cmd.frame < frames.first || *cmd.frame > frames.last)
+            throw InputError("--frame", "",
+                             "frame " + std::to_string(*cmd.frame) +
+                                 " lies outside the track, which has frames " +
+                                 std::to_string(frames.first) + "-" + std::to_string(frames.last));
+        return frame_time(*cmd.frame, scene.fps);
+    }
+    if (cmd.time) {
+        const double hi = scene.camera_track.keys.empty() ? scene.sun_track.back().time
+                                                          : scene.camera_track.keys.back().time;
+        const double first_key = scene.camera_track.keys.empty()
+                                     ? scene.sun_track.front().time
+                                     : scene.camera_track.keys.front().time;
+        if (!(*cmd.time >= first_key && *cmd.time <= hi))
+            throw InputError("--time", "",
+                             "must lie within the track, [" + std::to_string(first_key) + ", " +
+                                 std::to_string(hi) + "] s, got " + std::to_string(*cmd.time));
+        return *cmd.time;
+    }
+    return frame_time(frames.first, scene.fps);
+}
+
 }  // namespace
 
 void print_explain(const Shot& shot, const FrameReport& report, const std::string& what,
@@ -54,13 +84,14 @@ int run_render(const RenderCommand& cmd) {
     PassTimer total;
     fs::path file = resolve_preset("scenes", cmd.scene, "SCENE");
     SceneDesc scene = load_scene(file, cmd.set);
+    const double t = frame_time_of(cmd, scene, file.string());
     // A still traces the sun's light for the particles it shows, not for every particle.
     const Shot shot = build_shot(std::move(scene), ShotOptions{});
     const double shot_ms = total.ms();
 
     FrameReport report;
     PassTimer frame_timer;
-    const Frame frame = paint_frame(shot, still_view(shot.scene),
+    const Frame frame = paint_frame(shot, view_at(shot.scene, t),
                                     scene_frame_settings(shot.scene, cmd.aovs), &report);
     const double frame_ms = frame_timer.ms();
 
