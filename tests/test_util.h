@@ -39,6 +39,9 @@ struct RunResult {
 // Runs the pleinair binary with `args` (shell words) from the source directory.
 RunResult run_pleinair(const std::string& args);
 
+// Starts the pleinair binary with `args` (no shell), output discarded; returns its PID, or -1.
+int spawn_pleinair(const std::vector<std::string>& args);
+
 // A fresh empty directory under the system's temporary folder.
 std::filesystem::path temp_dir(const std::string& name);
 

@@ -230,30 +230,12 @@ TEST_F(FullDisk, TreeAndFamilyFoldersAreCompleteOrAbsent) {
     EXPECT_FALSE(fs::exists(dir_ / "fam"));
 }
 
-// Starts pleinair with `args`, output discarded; returns its PID.
-pid_t spawn_pleinair(const std::vector<std::string>& args) {
-    std::vector<char*> argv;
-    std::string bin = PLEINAIR_BIN;
-    argv.push_back(bin.data());
-    std::vector<std::string> copy = args;
-    for (auto& a : copy) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-    pid_t pid = -1;
-    if (posix_spawn(&pid, bin.c_str(), &actions, nullptr, argv.data(), environ) != 0) pid = -1;
-    posix_spawn_file_actions_destroy(&actions);
-    return pid;
-}
-
 // SIGTERM and SIGINT while a family is being written: the run ends by that signal and its
 // temporary folder, with every member written so far, is gone.
 TEST(Signals, SigtermAndSigintRemoveTheTemporaries) {
     for (int sig : {SIGTERM, SIGINT}) {
         auto dir = test::temp_dir("signal-" + std::to_string(sig));
-        pid_t pid = spawn_pleinair(
+        pid_t pid = test::spawn_pleinair(
             {"family", "--preset", "shrub", "--count", "400", "-o", (dir / "fam").string()});
         ASSERT_GT(pid, 0);
         // Members are written into the temporary folder for seconds; signal once it holds a few.
