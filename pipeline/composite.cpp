@@ -1,13 +1,15 @@
-// The frame's background and its strokes: each tile composites its sprites back to front with
+// The frame's background and its strokes: each tile composites its sprites front to back with
 // the stroke kernel (vector rows when the sprite's colours come from its ramp, scalar samples
-// when they vary per fragment), tiles in parallel.
+// when they vary per fragment), tiles in parallel, and stops where nothing behind would show.
 #include "pipeline/composite.h"
 
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "pipeline/shot.h"
 #include "shading/stroke_kernel.h"
@@ -84,6 +86,31 @@ SpriteSpan sprite_span(const Sprite& sp, int px0, int py0, int px1, int py1) {
     return s;
 }
 
+// One tile's strokes composited front to back: the premultiplied colour gathered so far, the
+// light still let through (transmittance), and the AOVs of the nearest stroke more than half
+// opaque. The background and underpainting go under it when the tile is done.
+struct TileLayer {
+    int x0 = 0, y0 = 0, w = 0, h = 0;
+    // Light that still reaches a pixel through the strokes painted in front of it, at or below
+    // which nothing behind can change the pixel by more than that: the default 1/2048 of a
+    // linear unit is under a third of an 8-bit sRGB level even in the darkest paint.
+    float cutoff = 0;
+    int saturated = 0;  // pixels whose transmittance fell to the cutoff
+    std::array<float, 3 * kTile * kTile> color{};
+    std::array<float, kTile * kTile> through;
+    std::array<uint32_t, kTile * kTile> front;  // sprite index of the AOVs, or kNone
+    static constexpr uint32_t kNone = ~0u;
+
+    TileLayer(int px0, int py0, int px1, int py1, float cutoff)
+        : x0(px0), y0(py0), w(px1 - px0), h(py1 - py0), cutoff(cutoff) {
+        through.fill(1.0f);
+        front.fill(kNone);
+    }
+    size_t at(int x, int y) const { return static_cast<size_t>(y - y0) * kTile + (x - x0); }
+    bool open(int x, int y) const { return through[at(x, y)] > cutoff; }
+    bool full() const { return saturated == w * h; }
+};
+
 // What the tile painter shares across its sprites.
 struct TilePainter {
     const Shot& shot;
@@ -92,25 +119,24 @@ struct TilePainter {
     const RenderSettings& rs;
     Frame& frame;
     int n;  // samples per pixel axis
+    TileLayer& layer;
     uint64_t fragments = 0;
 
-    // Premultiplied "over" of one stroke fragment, and the AOVs of the frontmost stroke.
-    void composite(size_t pi, Color col, float a, const Sprite& sp) {
+    // Premultiplied "under" of one stroke fragment: it shows through what lies in front.
+    void composite(int x, int y, Color col, float a, uint32_t idx) {
+        const Sprite& sp = set.sprites[idx];
         a *= sp.opacity;
-        float* px = &frame.rgba[4 * pi];
-        float keep = 1.0f - a;
-        px[0] = col.x * a + px[0] * keep;
-        px[1] = col.y * a + px[1] * keep;
-        px[2] = col.z * a + px[2] * keep;
-        px[3] = a + px[3] * keep;
-        if (plan.aovs) {
-            frame.alpha[pi] = a + frame.alpha[pi] * keep;
-            if (a > 0.5f) {
-                frame.depth[pi] = sp.depth;
-                frame.object_id[pi] = static_cast<float>(sp.object_id);
-                frame.lightness[pi] = sp.k.lightness;
-            }
-        }
+        const size_t li = layer.at(x, y);
+        float& through = layer.through[li];
+        const float w = through * a;
+        float* c = &layer.color[3 * li];
+        c[0] += col.x * w;
+        c[1] += col.y * w;
+        c[2] += col.z * w;
+        if (plan.aovs && a > 0.5f && layer.front[li] == TileLayer::kNone) layer.front[li] = idx;
+        const bool was_open = through > layer.cutoff;
+        through *= 1.0f - a;
+        if (was_open && !(through > layer.cutoff)) ++layer.saturated;
     }
 
     // The feather, widened by the pixel's footprint in noise space at one sample per pixel
@@ -130,28 +156,10 @@ struct TilePainter {
         return pf;
     }
 
-    // Benchmarks: the footprint blended with a constant colour, the cost floor of a fragment.
-    void bare(const Sprite& sp, const SpriteSpan& r) {
-        for (int y = r.y0; y <= r.y1; ++y) {
-            int xa = r.x0, xb = r.x1;
-            if (!row_span(sp, r.sx, r.sy, r.txx, r.tyy, y, xa, xb)) continue;
-            for (int x = xa; x <= xb; ++x) {
-                float dx = x + 0.5f - sp.x, dy = y + 0.5f - sp.y;
-                float s = 0.5f + dx * r.sx + dy * r.sy, t = 0.5f + dx * r.txx + dy * r.tyy;
-                if (s <= 0.0f || s >= 1.0f || t <= 0.0f || t >= 1.0f) continue;
-                ++fragments;
-                float* px = &frame.rgba[4 * (static_cast<size_t>(y) * frame.width + x)];
-                px[0] = 0.1f + 0.5f * px[0];
-                px[1] = 0.2f + 0.5f * px[1];
-                px[2] = 0.05f + 0.5f * px[2];
-                px[3] = 0.5f + 0.5f * px[3];
-            }
-        }
-    }
-
     // The vector kernel, one row of the sprite at a time, colours from the sprite's ramp.
-    void rows(const Sprite& sp, const SpriteSpan& r, const SpriteMaterial& m,
+    void rows(uint32_t idx, const SpriteSpan& r, const SpriteMaterial& m,
               const StrokeShaderParams& pf, const StrokeRamp& ramp) {
+        const Sprite& sp = set.sprites[idx];
         const StrokeShaderParams& p = *m.shader;
         StrokeRow row;
         row.cx = sp.x, row.cy = sp.y;
@@ -165,26 +173,33 @@ struct TilePainter {
         for (int y = r.y0; y <= r.y1; ++y) {
             int xa = r.x0, xb = r.x1;
             if (!row_span(sp, r.sx, r.sy, r.txx, r.tyy, y, xa, xb)) continue;
-            shade_stroke_row(row, y, xa, xb - xa + 1, al, rr, gg, bb, ins);
-            const int len = xb - xa + 1;
-            for (int c = 0; c < len; ++c) fragments += static_cast<uint64_t>(ins[c]);
-            for (int c = 0; c < len; ++c) {
-                if (!(al[c] > 0.0f)) continue;
-                const size_t pi = static_cast<size_t>(y) * frame.width + xa + c;
-                composite(pi, Color(rr[c], gg[c], bb[c]), al[c], sp);
+            // Each run of pixels that can still change, shaded as one span.
+            for (int a = xa; a <= xb;) {
+                if (!layer.open(a, y)) {
+                    ++a;
+                    continue;
+                }
+                int b = a;
+                while (b < xb && layer.open(b + 1, y)) ++b;
+                const int len = b - a + 1;
+                shade_stroke_row(row, y, a, len, al, rr, gg, bb, ins);
+                for (int c = 0; c < len; ++c) fragments += static_cast<uint64_t>(ins[c]);
+                for (int c = 0; c < len; ++c)
+                    if (al[c] > 0.0f) composite(a + c, y, Color(rr[c], gg[c], bb[c]), al[c], idx);
+                a = b + 1;
             }
         }
     }
 
     // Sample by sample: exact edge mask or palette, or light varying over the sprite.
-    void samples(const Sprite& sp, const SpriteSpan& r, const SpriteMaterial& m,
+    void samples(uint32_t idx, const SpriteSpan& r, const SpriteMaterial& m,
                  const StrokeShaderParams& pf, const StrokeRamp* ramp, const ShadowGrid* grid);
 
-    void paint(uint32_t idx, int px0, int py0, int px1, int py1) {
+    void paint(uint32_t idx) {
         const Sprite& sp = set.sprites[idx];
         const SpriteMaterial& m = shot.materials[sp.material];
-        const SpriteSpan r = sprite_span(sp, px0, py0, px1, py1);
-        if (plan.bare_blend) return bare(sp, r);
+        const SpriteSpan r =
+            sprite_span(sp, layer.x0, layer.y0, layer.x0 + layer.w, layer.y0 + layer.h);
         // Light varying over the sprite moves its lightness per fragment: no ramp then.
         const ShadowGrid* grid =
             sp.grid >= 0 ? &set.grids[static_cast<size_t>(sp.grid)] : nullptr;
@@ -195,20 +210,66 @@ struct TilePainter {
         const bool use_ramp = rs.palette_lut && !grid;
         if (use_ramp) ramp = make_ramp(sp.k, *m.palette);
         const StrokeShaderParams pf = filtered(sp, *m.shader);
-        if (use_ramp && rs.edge_lut) return rows(sp, r, m, pf, ramp);
-        samples(sp, r, m, pf, use_ramp ? &ramp : nullptr, grid);
+        if (use_ramp && rs.edge_lut) return rows(idx, r, m, pf, ramp);
+        samples(idx, r, m, pf, use_ramp ? &ramp : nullptr, grid);
+    }
+
+    // The layer over what the frame holds (background and underpainting), and its AOVs.
+    void finish() {
+        for (int y = layer.y0; y < layer.y0 + layer.h; ++y)
+            for (int x = layer.x0; x < layer.x0 + layer.w; ++x) {
+                const size_t li = layer.at(x, y), pi = static_cast<size_t>(y) * frame.width + x;
+                const float t = layer.through[li];
+                const float* c = &layer.color[3 * li];
+                float* px = &frame.rgba[4 * pi];
+                px[0] = c[0] + t * px[0];
+                px[1] = c[1] + t * px[1];
+                px[2] = c[2] + t * px[2];
+                px[3] = (1.0f - t) + t * px[3];
+                if (!plan.aovs) continue;
+                frame.alpha[pi] = 1.0f - t;
+                if (layer.front[li] == TileLayer::kNone) continue;
+                const Sprite& sp = set.sprites[layer.front[li]];
+                frame.depth[pi] = sp.depth;
+                frame.object_id[pi] = static_cast<float>(sp.object_id);
+                frame.lightness[pi] = sp.k.lightness;
+            }
     }
 };
 
-void TilePainter::samples(const Sprite& sp, const SpriteSpan& r, const SpriteMaterial& m,
+// Benchmarks: each sprite's footprint blended with a constant colour, back to front straight
+// into the frame: the cost floor of a fragment.
+uint64_t paint_bare(const Sprite& sp, const SpriteSpan& r, Frame& frame) {
+    uint64_t fragments = 0;
+    for (int y = r.y0; y <= r.y1; ++y) {
+        int xa = r.x0, xb = r.x1;
+        if (!row_span(sp, r.sx, r.sy, r.txx, r.tyy, y, xa, xb)) continue;
+        for (int x = xa; x <= xb; ++x) {
+            float dx = x + 0.5f - sp.x, dy = y + 0.5f - sp.y;
+            float s = 0.5f + dx * r.sx + dy * r.sy, t = 0.5f + dx * r.txx + dy * r.tyy;
+            if (s <= 0.0f || s >= 1.0f || t <= 0.0f || t >= 1.0f) continue;
+            ++fragments;
+            float* px = &frame.rgba[4 * (static_cast<size_t>(y) * frame.width + x)];
+            px[0] = 0.1f + 0.5f * px[0];
+            px[1] = 0.2f + 0.5f * px[1];
+            px[2] = 0.05f + 0.5f * px[2];
+            px[3] = 0.5f + 0.5f * px[3];
+        }
+    }
+    return fragments;
+}
+
+void TilePainter::samples(uint32_t idx, const SpriteSpan& r, const SpriteMaterial& m,
                           const StrokeShaderParams& pf, const StrokeRamp* ramp,
                           const ShadowGrid* grid) {
+    const Sprite& sp = set.sprites[idx];
     const StrokeShaderParams& p = *m.shader;
     const float inv_n = 1.0f / static_cast<float>(n);
     for (int y = r.y0; y <= r.y1; ++y) {
         int xa = r.x0, xb = r.x1;
         if (!row_span(sp, r.sx, r.sy, r.txx, r.tyy, y, xa, xb)) continue;
         for (int x = xa; x <= xb; ++x) {
+            if (!layer.open(x, y)) continue;
             float cover = 0.0f;
             int inside = 0;
             for (int j = 0; j < n; ++j)
@@ -241,7 +302,7 @@ void TilePainter::samples(const Sprite& sp, const SpriteSpan& r, const SpriteMat
             } else {
                 col = ramp ? stroke_color(sp.k, *ramp, s, t) : stroke_color(sp.k, *m.palette, s, t);
             }
-            composite(static_cast<size_t>(y) * frame.width + x, col, a, sp);
+            composite(x, y, col, a, idx);
         }
     }
 }
@@ -305,8 +366,19 @@ uint64_t paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins& b
         const int px0 = tx * kTile, py0 = ty * kTile;
         const int px1 = std::min(px0 + kTile, frame.width);
         const int py1 = std::min(py0 + kTile, frame.height);
-        TilePainter painter{shot, set, plan, rs, frame, n};
-        for (uint32_t idx : bins.bins[tile]) painter.paint(idx, px0, py0, px1, py1);
+        const std::vector<uint32_t>& bin = bins.bins[tile];
+        if (plan.bare_blend) {
+            for (uint32_t idx : bin)
+                tile_fragments[tile] += paint_bare(
+                    set.sprites[idx], sprite_span(set.sprites[idx], px0, py0, px1, py1), frame);
+            return;
+        }
+        // Front to back (the bin's order reversed), until every pixel of the tile is covered:
+        // the strokes behind would not show.
+        auto layer = std::make_unique<TileLayer>(px0, py0, px1, py1, rs.coverage_cutoff);
+        TilePainter painter{shot, set, plan, rs, frame, n, *layer};
+        for (auto it = bin.rbegin(); it != bin.rend() && !layer->full(); ++it) painter.paint(*it);
+        painter.finish();
         tile_fragments[tile] = painter.fragments;
     });
     uint64_t fragments = 0;

@@ -1,5 +1,6 @@
 // The compositing stage of a frame: the background, the underpainting under the strokes, then
-// every sprite composited back to front, tile by tile in parallel.
+// the sprites composited front to back under one another, tile by tile in parallel, each tile
+// until the strokes already painted cover it.
 #pragma once
 
 #include <cstdint>
@@ -28,7 +29,10 @@ uint64_t paint_underpainting(const Shot& shot, const FrameView& view, const Fram
                              const RenderSettings& settings, const RayScene* sun_rays,
                              Frame& frame);
 
-// Composites every binned sprite; returns the fragments (pixel samples) shaded.
+// Composites the binned sprites over what the frame holds, nearest first, skipping pixels the
+// nearer strokes already cover (less than 1/2048 of their light left); the result is the
+// back-to-front "over" of every sprite to within that. Returns the fragments (pixel samples)
+// shaded.
 uint64_t paint_strokes(const Shot& shot, const SpriteSet& sprites, const TileBins& bins,
                        const FramePlan& plan, const RenderSettings& settings, Frame& frame);
 

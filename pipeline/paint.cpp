@@ -102,7 +102,7 @@ Frame paint_frame(const Shot& shot, const FrameView& view, const FrameSettings& 
     }
     t = PassTimer();
     rep.fragments = paint_strokes(shot, sprites, bins, plan, rs, frame);
-    rep.passes.push_back({"paint", true, "strokes back to front, tiles in parallel", t.ms(),
+    rep.passes.push_back({"paint", true, "strokes front to back, tiles in parallel, each until it is covered", t.ms(),
                           std::to_string(rep.fragments) + " fragments"});
     return frame;
 }

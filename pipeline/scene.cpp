@@ -253,6 +253,10 @@ void visit_scene(SceneDesc& s, V& v) {
         v.real("underpaint_scale", r.underpaint_scale, {0.05, 1}, "",
                "Resolution of the underpainting (flat colour under the strokes) over the "
                "image's.");
+        v.real("coverage_cutoff", r.coverage_cutoff, {0, 0.1}, "",
+               "Strokes are composited nearest first; once less than this much light is left at "
+               "a pixel, the strokes behind are skipped there (each changes it by less than "
+               "this, in linear colour). 0 paints every stroke.");
         v.real("surface_density", s.build.surface_density, {0.05, 16}, "",
                "Surface particles per cluster, relative to the scene's; sprites shrink so the "
                "covered area stays the same.");

@@ -30,6 +30,9 @@ struct RenderSettings {
     ShadowMode shadows = ShadowMode::kTransmissive;
     ShadowSamples shadow_samples = ShadowSamples::kParticle;
     float underpaint_scale = 0.5f;  // underpainting resolution over the image's
+    // Light left at a pixel below which the strokes behind are not painted (front to back); 0
+    // paints every stroke.
+    float coverage_cutoff = 1.0f / 2048.0f;
 };
 
 }  // namespace pleinair

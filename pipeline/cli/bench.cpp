@@ -61,6 +61,7 @@ int run_bench_accuracy(const BenchCommand& cmd) {
     ref.render.shadows = ShadowMode::kTransmissive;
     ref.render.shadow_samples = ShadowSamples::kFragment;
     ref.render.underpaint_scale = 1.0f;
+    ref.render.coverage_cutoff = 0;
     ref.build.surface_density = 4.0f;
     const SharedLand ref_land = std::make_shared<const BuiltLandscape>(build_landscape(ref));
     Timed reference = timed_paint(ref, trees, ref_land, 1);
@@ -82,6 +83,9 @@ int run_bench_accuracy(const BenchCommand& cmd) {
         {"palette", "table per sprite", [](SceneDesc& s) { s.render.palette_lut = true; }},
         {"edge mask", "exact (sin, pow)", [](SceneDesc& s) { s.render.edge_lut = false; }},
         {"edge mask", "table", [](SceneDesc& s) { s.render.edge_lut = true; }},
+        {"coverage cutoff", "0 (every stroke)", [](SceneDesc& s) { s.render.coverage_cutoff = 0; }},
+        {"coverage cutoff", "1/2048", [](SceneDesc& s) { s.render.coverage_cutoff = 1.0f / 2048; }},
+        {"coverage cutoff", "1/256", [](SceneDesc& s) { s.render.coverage_cutoff = 1.0f / 256; }},
     };
     if (scene.sun_casts_shadows) {
         rows.push_back({"shadows", "none", [](SceneDesc& s) { s.sun_casts_shadows = false; }});
@@ -107,7 +111,7 @@ int run_bench_accuracy(const BenchCommand& cmd) {
     }
     std::printf(
         "Reference: %s at %dx%d, 16 samples per pixel, 8 octaves, exact palette and edge "
-        "mask%s: %.0f ms.\nEach row changes one setting of the reference.\n\n",
+        "mask, every stroke painted%s: %.0f ms.\nEach row changes one setting of the reference.\n\n",
         cmd.scene.c_str(), scene.camera.width, scene.camera.height,
         landscape
             ? ", transmissive shadows per fragment, full-resolution underpainting, 4x surface "

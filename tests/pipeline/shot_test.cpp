@@ -192,5 +192,44 @@ TEST(Bins, EveryTileASpriteTouchesListsItInOrder) {
     EXPECT_EQ(b.bins[3], (std::vector<uint32_t>{2}));
 }
 
+// Strokes composited nearest first stop where less than coverage_cutoff of the light is left:
+// the frame differs from painting every stroke by at most that (plus rounding), and far fewer
+// fragments are shaded. A stack of 300 strokes on one spot is the hard case.
+TEST(Composite, CoverageCutoffBoundsTheErrorOfSkippedStrokes) {
+    SceneDesc s = parse_scene(R"({"camera": {"position": [0, 0, 10], "look_at": [0, 0, 0],
+        "fov": 20, "width": 64, "height": 48},
+        "families": {"oak": {"preset": "oak"}}, "trees": []})",
+                              "test");
+    BuiltTree t;
+    LeafParticles& L = t.tree.leaves;
+    for (int i = 0; i < 300; ++i) {
+        L.position.push_back({0.01f * (i % 7), 0.01f * (i % 5), -0.01f * i});
+        L.normal.push_back({0, 0, 1});
+        L.branch_distance.push_back(0.5f);
+        L.center_distance.push_back(0.5f);
+        L.label.push_back((i + 0.5f) / 300);
+        L.tree_id.push_back(0);
+        L.fade_begin.push_back(2);
+        L.fade_end.push_back(3);
+    }
+    s.families[0].leaf_shader.sprite_size = 3;
+    s.families[0].leaf_shader.max_stroke_opacity = 0.97f;
+    s.render.coverage_cutoff = 0;
+    FrameReport all, cut;
+    const Frame every = paint_still(s, {t}, true, &all);
+    s.render.coverage_cutoff = 1.0f / 2048;
+    const Frame skipped = paint_still(s, {t}, true, &cut);
+    EXPECT_LT(cut.fragments * 2, all.fragments) << "the strokes behind were skipped";
+    float worst = 0;
+    for (size_t i = 0; i < every.rgba.size(); ++i)
+        worst = std::max(worst, std::abs(every.rgba[i] - skipped.rgba[i]));
+    EXPECT_GT(worst, 0.0f);
+    EXPECT_LE(worst, 1.0f / 2048 + 1e-5f);
+    EXPECT_EQ(every.depth, skipped.depth);  // the nearest stroke over half opaque, either way
+    EXPECT_EQ(every.object_id, skipped.object_id);
+    for (size_t i = 0; i < every.alpha.size(); ++i)
+        EXPECT_NEAR(every.alpha[i], skipped.alpha[i], 1.0f / 2048 + 1e-6f);
+}
+
 }  // namespace
 }  // namespace pleinair
