@@ -74,9 +74,9 @@ bool sprite_size(const SpriteContext& c, const SpriteMaterial& m, const SpriteIn
     return true;
 }
 
-// Projects one particle; returns false if it is culled (behind the camera, not finite, too
-// small, too faint or off screen).
-bool make_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in, Sprite& out) {
+// Projects one particle to its sprite's place, size and direction on screen; returns false if
+// it is culled (behind the camera, not finite, too small, too faint or off screen).
+bool place_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in, Sprite& out) {
     const SpriteMaterial& m = c.shot.materials[mat];
     const StrokeShaderParams& p = *m.shader;
     const Projection pr = project(c.cam, in.world);
@@ -98,14 +98,19 @@ bool make_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in, 
     out.ay = static_cast<float>(std::cos(angle));
     float ex, ey;
     sprite_extent(out, ex, ey);
-    if (pr.x + ex < 0 || pr.y + ey < 0 || pr.x - ex > c.cam.width || pr.y - ey > c.cam.height)
-        return false;
+    return !(pr.x + ex < 0 || pr.y + ey < 0 || pr.x - ex > c.cam.width ||
+             pr.y - ey > c.cam.height);
+}
 
+// The placed sprite's paint: its stroke constants, lit by in.shadow.
+void shade_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in, Sprite& out) {
+    const SpriteMaterial& m = c.shot.materials[mat];
+    const StrokeShaderParams& p = *m.shader;
     const float n_dot_l = glm::dot(in.normal, c.sun);
     float d = 0;
     const Atmosphere& a = c.shot.scene.atmosphere;
     if (c.plan.atmosphere)
-        d = distance_value(pr.depth, a.near_distance, a.far_distance, p.dist_curve_bias);
+        d = distance_value(out.depth, a.near_distance, a.far_distance, p.dist_curve_bias);
     const bool surface = in.kind == SpriteKind::kSurface;
     out.k = stroke_constants(p, n_dot_l, in.center_distance, in.branch_distance, in.label,
                              in.tree_id, in.shadow, d, 0.0f,
@@ -125,7 +130,6 @@ bool make_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in, 
     out.kind = in.kind;
     if (!c.plan.sub_stroke) out.k.sub_amt = 0;
     out.material = mat;
-    return true;
 }
 
 // The particle's sprite input, by kind; `light` is filled in by the caller.
@@ -257,16 +261,18 @@ SpriteSet make_sprites(const Shot& shot, const FrameView& view, const FramePlan&
         size_t k = 0;  // the particle's index in the shot's light cache
         for_each_particle(shot, i, [&](SpriteKind kind, size_t j, const RayOrigin& o) {
             const size_t slot = k++;
-            if (!visible(shot, c.cam, o, counters)) return void(++out.culled);
+            // Cheapest test first: on screen, then seen past the surfaces, then lit.
             MaterialId mat;
             SpriteInput in = sprite_input(shot, i, kind, j, o, mat);
+            Sprite sp;
+            if (!place_sprite(c, mat, in, sp)) return void(++out.culled);
+            if (!visible(shot, c.cam, o, counters)) return void(++out.culled);
             if (plan.sun_light == SunLightSource::kShot)
                 in.shadow = shot.sun_light[i][slot];
             else if (traced && !plan.fragment_shadows)
                 ++counters.shadow_rays.local(),
                     in.shadow = sun_light_at(*sun_rays, o, c.sun, rs.shadows);
-            Sprite sp;
-            if (!make_sprite(c, mat, in, sp)) return void(++out.culled);
+            shade_sprite(c, mat, in, sp);
             if (plan.fragment_shadows) {
                 sp.grid = static_cast<int32_t>(out.grids.size());
                 out.grids.push_back(shadow_grid(c, *sun_rays, o, sp, counters));
