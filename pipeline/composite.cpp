@@ -156,18 +156,26 @@ struct TilePainter {
         return pf;
     }
 
-    // The vector kernel, one row of the sprite at a time, colours from the sprite's ramp.
-    void rows(uint32_t idx, const SpriteSpan& r, const SpriteMaterial& m,
-              const StrokeShaderParams& pf, const StrokeRamp& ramp) {
-        const Sprite& sp = set.sprites[idx];
-        const StrokeShaderParams& p = *m.shader;
+    // What the stroke kernels read of one sprite (no ramp yet).
+    StrokeRow stroke_row(const Sprite& sp, const SpriteSpan& r, const SpriteMaterial& m,
+                         const StrokeShaderParams& pf) const {
         StrokeRow row;
         row.cx = sp.x, row.cy = sp.y;
         row.sx = r.sx, row.sy = r.sy, row.txx = r.txx, row.tyy = r.tyy;
         row.feather_min = pf.stroke_feather_min, row.feather_max = pf.stroke_feather_max;
-        row.max_opacity = p.max_stroke_opacity, row.stroke_fullness = p.stroke_fullness;
+        row.max_opacity = m.shader->max_stroke_opacity;
+        row.stroke_fullness = m.shader->stroke_fullness;
         row.samples_per_axis = n, row.octaves = rs.octaves;
-        row.k = &sp.k, row.edge = &m.edge, row.ramp = &ramp;
+        row.k = &sp.k, row.edge = &m.edge;
+        return row;
+    }
+
+    // The vector kernel, one row of the sprite at a time, colours from the sprite's ramp.
+    void rows(uint32_t idx, const SpriteSpan& r, const SpriteMaterial& m,
+              const StrokeShaderParams& pf, const StrokeRamp& ramp) {
+        const Sprite& sp = set.sprites[idx];
+        StrokeRow row = stroke_row(sp, r, m, pf);
+        row.ramp = &ramp;
         float al[kTile], rr[kTile], gg[kTile], bb[kTile];
         int ins[kTile];
         for (int y = r.y0; y <= r.y1; ++y) {
@@ -264,35 +272,19 @@ void TilePainter::samples(uint32_t idx, const SpriteSpan& r, const SpriteMateria
                           const ShadowGrid* grid) {
     const Sprite& sp = set.sprites[idx];
     const StrokeShaderParams& p = *m.shader;
-    const float inv_n = 1.0f / static_cast<float>(n);
+    StrokeRow row = stroke_row(sp, r, m, pf);
+    if (!rs.edge_lut) row.edge = nullptr;
     for (int y = r.y0; y <= r.y1; ++y) {
         int xa = r.x0, xb = r.x1;
         if (!row_span(sp, r.sx, r.sy, r.txx, r.tyy, y, xa, xb)) continue;
         for (int x = xa; x <= xb; ++x) {
             if (!layer.open(x, y)) continue;
-            float cover = 0.0f;
             int inside = 0;
-            for (int j = 0; j < n; ++j)
-                for (int i = 0; i < n; ++i) {
-                    float dx = x + (i + 0.5f) * inv_n - sp.x;
-                    float dy = y + (j + 0.5f) * inv_n - sp.y;
-                    float s = 0.5f + dx * r.sx + dy * r.sy;
-                    float t = 0.5f + dx * r.txx + dy * r.tyy;
-                    if (s <= 0.0f || s >= 1.0f || t <= 0.0f || t >= 1.0f) continue;
-                    ++inside;
-                    float e = rs.edge_lut ? edge_mask(m.edge, s, t, p.stroke_fullness)
-                                          : edge_mask(s, t, p.stroke_fullness);
-                    // noise <= 1: below the lower feather threshold nothing shows.
-                    if (e < pf.stroke_feather_min || e <= 0.0f) continue;
-                    cover += stroke_opacity(pf, stroke_noise(sp.k, s, t, rs.octaves), e);
-                }
-            if (!inside) continue;
+            const float a = stroke_coverage(row, x, y, inside);
             fragments += static_cast<uint64_t>(inside);
-            float a = cover * inv_n * inv_n;
             if (!(a > 0.0f)) continue;
-            float dx = x + 0.5f - sp.x, dy = y + 0.5f - sp.y;
-            float s = clamp01(0.5f + dx * r.sx + dy * r.sy);
-            float t = clamp01(0.5f + dx * r.txx + dy * r.tyy);
+            float s, t;
+            stroke_pixel_st(row, x, y, s, t);
             Color col;
             if (grid) {
                 StrokeConstants k = sp.k;

@@ -289,36 +289,45 @@ void shade_stroke_row(const StrokeRow& row, int y, int x0, int count, float* alp
     HWY_DYNAMIC_DISPATCH(ShadeStrokeRow)(row, y, x0, count, alpha, r, g, b, inside);
 }
 
-void shade_stroke_row_scalar(const StrokeRow& row, int y, int x0, int count, float* alpha, float* r,
-                             float* g, float* b, int* inside) {
+float stroke_coverage(const StrokeRow& row, int x, int y, int& inside) {
     const int n = row.samples_per_axis;
     const float inv_n = 1.0f / static_cast<float>(n);
-    StrokeShaderParams p;  // only the mask's four values are read
+    StrokeShaderParams p;  // only the mask's three values are read
     p.stroke_feather_min = row.feather_min;
     p.stroke_feather_max = row.feather_max;
     p.max_stroke_opacity = row.max_opacity;
+    float cover = 0.0f;
+    inside = 0;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            float dx = static_cast<float>(x) + (i + 0.5f) * inv_n - row.cx;
+            float dy = static_cast<float>(y) + (j + 0.5f) * inv_n - row.cy;
+            float s = 0.5f + dx * row.sx + dy * row.sy;
+            float t = 0.5f + dx * row.txx + dy * row.tyy;
+            if (s <= 0.0f || s >= 1.0f || t <= 0.0f || t >= 1.0f) continue;
+            ++inside;
+            float e = row.edge ? edge_mask(*row.edge, s, t, row.stroke_fullness)
+                               : edge_mask(s, t, row.stroke_fullness);
+            // noise <= 1: below the lower feather threshold nothing shows.
+            if (e < row.feather_min || e <= 0.0f) continue;
+            cover += stroke_opacity(p, stroke_noise(*row.k, s, t, row.octaves), e);
+        }
+    return inside ? cover * inv_n * inv_n : 0.0f;
+}
+
+void stroke_pixel_st(const StrokeRow& row, int x, int y, float& s, float& t) {
+    float dx = static_cast<float>(x) + 0.5f - row.cx, dy = static_cast<float>(y) + 0.5f - row.cy;
+    s = clamp01(0.5f + dx * row.sx + dy * row.sy);
+    t = clamp01(0.5f + dx * row.txx + dy * row.tyy);
+}
+
+void shade_stroke_row_scalar(const StrokeRow& row, int y, int x0, int count, float* alpha, float* r,
+                             float* g, float* b, int* inside) {
     for (int c = 0; c < count; ++c) {
         const int x = x0 + c;
-        float cover = 0.0f;
-        int in = 0;
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i) {
-                float dx = static_cast<float>(x) + (i + 0.5f) * inv_n - row.cx;
-                float dy = static_cast<float>(y) + (j + 0.5f) * inv_n - row.cy;
-                float s = 0.5f + dx * row.sx + dy * row.sy;
-                float t = 0.5f + dx * row.txx + dy * row.tyy;
-                if (s <= 0.0f || s >= 1.0f || t <= 0.0f || t >= 1.0f) continue;
-                ++in;
-                float e = edge_mask(*row.edge, s, t, row.stroke_fullness);
-                if (e < row.feather_min || e <= 0.0f) continue;
-                cover += stroke_opacity(p, stroke_noise(*row.k, s, t, row.octaves), e);
-            }
-        inside[c] = in;
-        alpha[c] = in ? cover * inv_n * inv_n : 0.0f;
-        float dx = static_cast<float>(x) + 0.5f - row.cx,
-              dy = static_cast<float>(y) + 0.5f - row.cy;
-        float s = clamp01(0.5f + dx * row.sx + dy * row.sy);
-        float t = clamp01(0.5f + dx * row.txx + dy * row.tyy);
+        alpha[c] = stroke_coverage(row, x, y, inside[c]);
+        float s, t;
+        stroke_pixel_st(row, x, y, s, t);
         Color col = stroke_color(*row.k, *row.ramp, s, t);
         r[c] = col.x, g[c] = col.y, b[c] = col.z;
     }

@@ -19,7 +19,7 @@ struct StrokeRow {
     int samples_per_axis = 1;  // 1, 2 or 4
     int octaves = 1;
     const StrokeConstants* k = nullptr;
-    const EdgeTable* edge = nullptr;
+    const EdgeTable* edge = nullptr;  // null: the exact edge mask (sin, pow); scalar only
     const StrokeRamp* ramp = nullptr;
 };
 
@@ -29,6 +29,11 @@ struct StrokeRow {
 inline constexpr int kStrokeRowMax = 4096;
 void shade_stroke_row(const StrokeRow& row, int y, int x0, int count, float* alpha, float* r,
                       float* g, float* b, int* inside);
+// The scalar reference, pixel by pixel: the mean stroke opacity of pixel (x, y)'s n x n
+// samples (0 when none lies inside the sprite), with the samples inside counted; and the
+// pixel centre's (s, t), clamped to the sprite, where its colour is taken.
+float stroke_coverage(const StrokeRow& row, int x, int y, int& inside);
+void stroke_pixel_st(const StrokeRow& row, int x, int y, float& s, float& t);
 void shade_stroke_row_scalar(const StrokeRow& row, int y, int x0, int count, float* alpha, float* r,
                              float* g, float* b, int* inside);
 
