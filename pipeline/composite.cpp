@@ -209,8 +209,7 @@ struct TilePainter {
         const SpriteSpan r =
             sprite_span(sp, layer.x0, layer.y0, layer.x0 + layer.w, layer.y0 + layer.h);
         // Light varying over the sprite moves its lightness per fragment: no ramp then.
-        const ShadowGrid* grid =
-            sp.grid >= 0 ? &set.grids[static_cast<size_t>(sp.grid)] : nullptr;
+        const ShadowGrid* grid = sp.grid >= 0 ? &set.grids[static_cast<size_t>(sp.grid)] : nullptr;
         // The sprite's colour ramp (palette, tint and atmosphere folded in), when the settings
         // allow the table: built here, per tile the sprite touches, so no frame-sized array of
         // ramps is ever held (a ramp's 384 bytes would outweigh the sprite).

@@ -54,8 +54,8 @@ FramePlan plan_frame(const Shot& shot, const FrameSettings& settings) {
         plan.sun_light = SunLightSource::kShot;
     else
         plan.sun_light = SunLightSource::kShotScene;
-    const char* where = plan.fragment_shadows ? "a 4 x 4 grid of rays per sprite"
-                                              : "one ray per particle";
+    const char* where =
+        plan.fragment_shadows ? "a 4 x 4 grid of rays per sprite" : "one ray per particle";
     add("shadows", plan.shadows,
         !scene.sun_casts_shadows ? "the sun casts no shadows: no shadow scene, no shadow ray"
         : !plan.shadows          ? "nothing in the scene to cast a shadow"

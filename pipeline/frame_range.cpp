@@ -55,9 +55,9 @@ FramePattern parse_frame_pattern(const std::string& pattern, const std::string& 
     else
         p.width = m[1].length() ? std::min(std::stoi(m[1]), 12) : 0;
     if (p.tail.find('/') != std::string::npos)
-        throw InputError(option, "",
-                         "expected the frame number in the file name, not in a folder, got \"" +
-                             pattern + "\"");
+        throw InputError(
+            option, "",
+            "expected the frame number in the file name, not in a folder, got \"" + pattern + "\"");
     return p;
 }
 

@@ -4,10 +4,9 @@
 // the same frame gives the same bytes.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
-
-#include <cstdint>
 #include <vector>
 
 #include "pipeline/frame.h"

@@ -66,7 +66,7 @@ Frame paint_frame(const Shot& shot, const FrameView& view, const FrameSettings& 
     rep.passes.push_back(
         {"sprites", true,
          std::string("every particle faces the camera") +
-             (plan.fragment_shadows ? "; 4 x 4 shadow rays per sprite"
+             (plan.fragment_shadows                     ? "; 4 x 4 shadow rays per sprite"
               : plan.sun_light == SunLightSource::kShot ? "; light from the shot"
               : plan.shadows                            ? "; a shadow ray per particle"
                                                         : "") +
@@ -89,10 +89,10 @@ Frame paint_frame(const Shot& shot, const FrameView& view, const FrameSettings& 
     t = PassTimer();
     Frame frame = make_frame(cam, plan.aovs);
     paint_background(shot.scene, cam, frame);
-    rep.passes.push_back({"background", true,
-                          shot.scene.background.canvas ? "canvas colour"
-                                                       : "sky and ground seen from the camera",
-                          t.ms(), ""});
+    rep.passes.push_back(
+        {"background", true,
+         shot.scene.background.canvas ? "canvas colour" : "sky and ground seen from the camera",
+         t.ms(), ""});
     if (plan.underpaint) {
         t = PassTimer();
         rep.underpaint_rays = paint_underpainting(shot, view, plan, rs, sun_rays, frame);
@@ -102,14 +102,16 @@ Frame paint_frame(const Shot& shot, const FrameView& view, const FrameSettings& 
     }
     t = PassTimer();
     rep.fragments = paint_strokes(shot, sprites, bins, plan, rs, frame);
-    rep.passes.push_back({"paint", true, "strokes front to back, tiles in parallel, each until it is covered", t.ms(),
-                          std::to_string(rep.fragments) + " fragments"});
+    rep.passes.push_back({"paint", true,
+                          "strokes front to back, tiles in parallel, each until it is covered",
+                          t.ms(), std::to_string(rep.fragments) + " fragments"});
     return frame;
 }
 
 Frame paint_still(const SceneDesc& scene, bool aovs, FrameReport* report) {
     const Shot shot = build_shot(scene);
-    return paint_frame(shot, still_view(shot.scene), scene_frame_settings(shot.scene, aovs), report);
+    return paint_frame(shot, still_view(shot.scene), scene_frame_settings(shot.scene, aovs),
+                       report);
 }
 
 Frame paint_still(const SceneDesc& scene, std::vector<BuiltTree> trees, bool aovs,
@@ -117,7 +119,8 @@ Frame paint_still(const SceneDesc& scene, std::vector<BuiltTree> trees, bool aov
     const Shot shot =
         build_shot(scene, std::make_shared<const std::vector<BuiltTree>>(std::move(trees)),
                    std::make_shared<const BuiltLandscape>());
-    return paint_frame(shot, still_view(shot.scene), scene_frame_settings(shot.scene, aovs), report);
+    return paint_frame(shot, still_view(shot.scene), scene_frame_settings(shot.scene, aovs),
+                       report);
 }
 
 }  // namespace pleinair

@@ -55,7 +55,6 @@ struct StrokeCaster {
     StrokeNoise noise;                   // noise frequencies and offsets of the stroke
 };
 
-
 // Meshes several RayScenes share (each tree's limbs, in the camera's scene and the sun's),
 // each kept in its own space and built once; scenes place them as instances. A scene holds
 // its own reference to the device and the meshes, so either may be destroyed first.

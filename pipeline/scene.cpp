@@ -244,12 +244,12 @@ void visit_scene(SceneDesc& s, V& v) {
         v.real("bark_coverage", s.build.bark_coverage, {0, 100}, "",
                "Bark strokes' total area over the area of the limbs' render mesh.");
         v.choice("shadows", r.shadows, kShadowModes,
-               "How leaf strokes shadow: \"transmissive\" (light dimmed by every stroke crossed) "
-               "or \"threshold\" (a stroke blocks where its mask is over one half).");
+                 "How leaf strokes shadow: \"transmissive\" (light dimmed by every stroke crossed) "
+                 "or \"threshold\" (a stroke blocks where its mask is over one half).");
         v.choice("shadow_samples", r.shadow_samples, kShadowSamples,
-               "Where shadow rays start: \"particle\" (one per particle, the whole stroke shares "
-               "it) or \"fragment\" (a 4 x 4 grid over each sprite, interpolated per fragment, "
-               "16 times the rays; colours then come from the palette per fragment).");
+                 "Where shadow rays start: \"particle\" (one per particle, the whole stroke shares "
+                 "it) or \"fragment\" (a 4 x 4 grid over each sprite, interpolated per fragment, "
+                 "16 times the rays; colours then come from the palette per fragment).");
         v.real("underpaint_scale", r.underpaint_scale, {0.05, 1}, "",
                "Resolution of the underpainting (flat colour under the strokes) over the "
                "image's.");

@@ -246,8 +246,8 @@ Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> t
                  (shot.sun_rays ? ", " + std::to_string(shot.sun_rays->mesh_count()) +
                                       " meshes + " + std::to_string(shot.sun_rays->caster_count()) +
                                       " stroke casters for the sun"
-                                : plan.sun_moves ? ", the sun's scene per frame (the sun moves)"
-                                                 : std::string(", no shadow scene"))});
+                  : plan.sun_moves ? ", the sun's scene per frame (the sun moves)"
+                                   : std::string(", no shadow scene"))});
     }
     if (plan.sun_light) {
         PassTimer timer;

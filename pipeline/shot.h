@@ -79,7 +79,9 @@ struct RayOrigin {
     glm::vec3 normal{0.0f};
     bool on_surface = false;
     float lift = 0;
-    glm::dvec3 lifted() const { return on_surface ? world + glm::dvec3(normal) * double(lift) : world; }
+    glm::dvec3 lifted() const {
+        return on_surface ? world + glm::dvec3(normal) * double(lift) : world;
+    }
     const glm::vec3* surface_normal() const { return on_surface ? &normal : nullptr; }
 };
 

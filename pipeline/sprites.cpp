@@ -98,8 +98,7 @@ bool place_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in,
     out.ay = static_cast<float>(std::cos(angle));
     float ex, ey;
     sprite_extent(out, ex, ey);
-    return !(pr.x + ex < 0 || pr.y + ey < 0 || pr.x - ex > c.cam.width ||
-             pr.y - ey > c.cam.height);
+    return !(pr.x + ex < 0 || pr.y + ey < 0 || pr.x - ex > c.cam.width || pr.y - ey > c.cam.height);
 }
 
 // The placed sprite's paint: its stroke constants, lit by in.shadow.
@@ -112,10 +111,10 @@ void shade_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in,
     if (c.plan.atmosphere)
         d = distance_value(out.depth, a.near_distance, a.far_distance, p.dist_curve_bias);
     const bool surface = in.kind == SpriteKind::kSurface;
-    out.k = stroke_constants(p, n_dot_l, in.center_distance, in.branch_distance, in.label,
-                             in.tree_id, in.shadow, d, 0.0f,
-                             !surface && c.plan.tint && p.unique_tint_amt > 0,
-                             c.plan.atmosphere && has_atmosphere_effect(p));
+    out.k =
+        stroke_constants(p, n_dot_l, in.center_distance, in.branch_distance, in.label, in.tree_id,
+                         in.shadow, d, 0.0f, !surface && c.plan.tint && p.unique_tint_amt > 0,
+                         c.plan.atmosphere && has_atmosphere_effect(p));
     if (surface) {
         const SurfaceParticles& S = *in.surface;
         const float h = S.height(in.index);
@@ -194,9 +193,8 @@ bool visible(const Shot& shot, const Camera& cam, const RayOrigin& o, Counters& 
     const double dist = glm::length(to_eye);
     if (!(dist > 0)) return true;
     // Any hit short of the eye hides it: an occlusion query, cheaper than the nearest hit.
-    const bool seen = !shot.view_rays->occluded(from, glm::vec3(to_eye / dist),
-                                                static_cast<float>(dist) * 0.999f,
-                                                o.surface_normal());
+    const bool seen = !shot.view_rays->occluded(
+        from, glm::vec3(to_eye / dist), static_cast<float>(dist) * 0.999f, o.surface_normal());
     if (!seen) ++n.hidden.local();
     return seen;
 }

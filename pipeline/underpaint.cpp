@@ -46,8 +46,9 @@ Color underpaint_color(const Shot& shot, const FrameView& view, const FramePlan&
     if (plan.atmosphere)
         d = distance_value(depth, scene.atmosphere.near_distance, scene.atmosphere.far_distance,
                            m.shader->dist_curve_bias);
-    StrokeConstants k = stroke_constants(*m.shader, n_dot_l, 0.5f, 0.5f, 0.5f, 0, 1.0f, d, 0.0f,
-                                         false, plan.atmosphere && has_atmosphere_effect(*m.shader));
+    StrokeConstants k =
+        stroke_constants(*m.shader, n_dot_l, 0.5f, 0.5f, 0.5f, 0, 1.0f, d, 0.0f, false,
+                         plan.atmosphere && has_atmosphere_effect(*m.shader));
     return finish_color(k, palette_lookup(*m.palette, l));
 }
 
@@ -70,8 +71,7 @@ Underpainting trace_underpainting(const Shot& shot, const FrameView& view, const
             if (!h.hit) continue;
             const glm::dvec3 world = cam.eye + dir * static_cast<double>(h.t);
             const size_t c = static_cast<size_t>(j) * u.w + i;
-            u.color[c] =
-                underpaint_color(shot, view, plan, rs, sun_rays, h, world, h.normal, dir);
+            u.color[c] = underpaint_color(shot, view, plan, rs, sun_rays, h, world, h.normal, dir);
             u.cover[c] = 1.0f;
             u.depth[c] = static_cast<float>(glm::dot(world - cam.eye, cam.forward));
         }
@@ -90,11 +90,14 @@ uint64_t paint_underpainting(const Shot& shot, const FrameView& view, const Fram
         const int j0 = static_cast<int>(sy), j1 = std::min(j0 + 1, uh - 1);
         const float wy = sy - j0;
         for (int x = 0; x < width; ++x) {
-            const float sx = std::clamp(static_cast<float>((x + 0.5) / u.fx - 0.5), 0.0f, uw - 1.0f);
+            const float sx =
+                std::clamp(static_cast<float>((x + 0.5) / u.fx - 0.5), 0.0f, uw - 1.0f);
             const int i0 = static_cast<int>(sx), i1 = std::min(i0 + 1, uw - 1);
             const float wx = sx - i0;
-            const size_t a = static_cast<size_t>(j0) * uw + i0, b = static_cast<size_t>(j0) * uw + i1,
-                         c = static_cast<size_t>(j1) * uw + i0, d = static_cast<size_t>(j1) * uw + i1;
+            const size_t a = static_cast<size_t>(j0) * uw + i0,
+                         b = static_cast<size_t>(j0) * uw + i1,
+                         c = static_cast<size_t>(j1) * uw + i0,
+                         d = static_cast<size_t>(j1) * uw + i1;
             auto lerp = [](float p, float q, float t) { return p + (q - p) * t; };
             const float cov =
                 lerp(lerp(u.cover[a], u.cover[b], wx), lerp(u.cover[c], u.cover[d], wx), wy);

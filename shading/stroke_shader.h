@@ -5,8 +5,8 @@
 
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <cstdint>
+#include <cstring>
 
 #include "shading/color.h"
 #include "shading/curves.h"

@@ -70,8 +70,8 @@ class ProgressReport {
 std::vector<int> frames_to_paint(const SceneDesc& scene, const std::string& text) {
     const FrameRange all = animation_frames(scene);
     if (all.last < all.first)
-        throw InputError("--frames", "", "the track holds no frame at " +
-                                             std::to_string(scene.fps) + " fps");
+        throw InputError("--frames", "",
+                         "the track holds no frame at " + std::to_string(scene.fps) + " fps");
     if (text.empty()) return all.frames();
     const FrameRange r = parse_frame_range(text);
     if (r.first < all.first || r.last > all.last)
@@ -97,16 +97,40 @@ void encode_video(const std::string& video, const FramePattern& pattern, int fir
     std::snprintf(start, sizeof start, "%d", first);
     std::snprintf(frames, sizeof frames, "%zu", count);
     std::snprintf(width, sizeof width, "%02d", pattern.width);
-    const std::string input = escape_percent(pattern.head) + "%" + width + "d" +
-                              escape_percent(pattern.tail);
+    const std::string input =
+        escape_percent(pattern.head) + "%" + width + "d" + escape_percent(pattern.tail);
     const std::string tmp = out.path().string();
     // yuv420p needs even sizes; bitexact keeps the encoder's version out of the file.
-    std::vector<std::string> args = {"ffmpeg", "-nostdin", "-loglevel", "error", "-y",
-                                     "-framerate", rate, "-start_number", start, "-i", input,
-                                     "-frames:v", frames, "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
-                                     "-c:v", "libx264", "-pix_fmt", "yuv420p", "-r", rate,
-                                     "-fflags", "+bitexact", "-flags:v", "+bitexact",
-                                     "-map_metadata", "-1", "-f", "mp4", tmp};
+    std::vector<std::string> args = {"ffmpeg",
+                                     "-nostdin",
+                                     "-loglevel",
+                                     "error",
+                                     "-y",
+                                     "-framerate",
+                                     rate,
+                                     "-start_number",
+                                     start,
+                                     "-i",
+                                     input,
+                                     "-frames:v",
+                                     frames,
+                                     "-vf",
+                                     "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                                     "-c:v",
+                                     "libx264",
+                                     "-pix_fmt",
+                                     "yuv420p",
+                                     "-r",
+                                     rate,
+                                     "-fflags",
+                                     "+bitexact",
+                                     "-flags:v",
+                                     "+bitexact",
+                                     "-map_metadata",
+                                     "-1",
+                                     "-f",
+                                     "mp4",
+                                     tmp};
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
@@ -125,20 +149,20 @@ void encode_video(const std::string& video, const FramePattern& pattern, int fir
 void check_outputs(const AnimateCommand& cmd, const FramePattern& pattern) {
     const std::string first = pattern.path(1);
     if (!is_image_path(first))
-        throw InputError("-o", "",
-                         "expected frame images ending in .png, .tif, .tiff or .exr, got \"" +
-                             cmd.out + "\"");
+        throw InputError(
+            "-o", "",
+            "expected frame images ending in .png, .tif, .tiff or .exr, got \"" + cmd.out + "\"");
     const std::string ext = fs::path(first).extension().string();
     if (cmd.aovs && ext != ".exr")
         throw InputError("--aovs", "", "AOV channels need .exr frames, got \"" + cmd.out + "\"");
     if (!cmd.video.empty()) {
         if (fs::path(cmd.video).extension() != ".mp4")
-            throw InputError("--video", "", "expected a file ending in .mp4, got \"" + cmd.video +
-                                                "\"");
-        if (ext == ".exr")
             throw InputError("--video", "",
-                             "needs PNG or TIFF frames (EXR frames are linear), got \"" + cmd.out +
-                                 "\"");
+                             "expected a file ending in .mp4, got \"" + cmd.video + "\"");
+        if (ext == ".exr")
+            throw InputError(
+                "--video", "",
+                "needs PNG or TIFF frames (EXR frames are linear), got \"" + cmd.out + "\"");
     }
 }
 
@@ -187,17 +211,15 @@ int run_animate(const AnimateCommand& cmd) {
         PassTimer t;
         FrameReport report;
         try {
-            const Frame frame =
-                paint_frame(shot, view_at(shot.scene, frame_time(f, shot.scene.fps)), settings,
-                            &report);
+            const Frame frame = paint_frame(
+                shot, view_at(shot.scene, frame_time(f, shot.scene.fps)), settings, &report);
             write_frame(path, frame);
         } catch (const InputError&) {
             throw;
         } catch (const std::exception& e) {
             throw std::runtime_error("frame " + std::to_string(f) + ": " + e.what());
         }
-        if (cmd.explain && times.empty())
-            print_explain(shot, report, file.string(), shot_ms);
+        if (cmd.explain && times.empty()) print_explain(shot, report, file.string(), shot_ms);
         times.push_back({t.ms(), f});
         progress.frame_done(path, true, times.back().first);
     }
@@ -209,10 +231,11 @@ int run_animate(const AnimateCommand& cmd) {
     if (!times.empty()) {
         std::vector<std::pair<double, int>> sorted = times;
         std::sort(sorted.begin(), sorted.end());
-        std::printf("shot built in %.0f ms; %zu frames painted: median %.0f ms, worst %.0f ms "
-                    "(frame %d); %.2f s in all\n",
-                    shot_ms, times.size(), sorted[sorted.size() / 2].first, sorted.back().first,
-                    sorted.back().second, total.ms() / 1000.0);
+        std::printf(
+            "shot built in %.0f ms; %zu frames painted: median %.0f ms, worst %.0f ms "
+            "(frame %d); %.2f s in all\n",
+            shot_ms, times.size(), sorted[sorted.size() / 2].first, sorted.back().first,
+            sorted.back().second, total.ms() / 1000.0);
     } else {
         std::printf("every frame was already complete\n");
     }

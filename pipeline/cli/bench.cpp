@@ -111,7 +111,8 @@ int run_bench_accuracy(const BenchCommand& cmd) {
     }
     std::printf(
         "Reference: %s at %dx%d, 16 samples per pixel, 8 octaves, exact palette and edge "
-        "mask, every stroke painted%s: %.0f ms.\nEach row changes one setting of the reference.\n\n",
+        "mask, every stroke painted%s: %.0f ms.\nEach row changes one setting of the "
+        "reference.\n\n",
         cmd.scene.c_str(), scene.camera.width, scene.camera.height,
         landscape
             ? ", transmissive shadows per fragment, full-resolution underpainting, 4x surface "

@@ -45,13 +45,13 @@ struct RenderCommand {
 
 struct AnimateCommand {
     std::string scene;
-    std::string frames;  // "A-B" or "A-BxSTEP"; empty: every frame of the track
-    std::string out;     // frame files: a run of # (or %04d) is the frame number
-    bool resume = false;     // keep the frames already complete, clear dead runs' temporaries
-    std::string video;       // encode the frames into this .mp4 with ffmpeg
-    bool preview = false;    // half resolution
+    std::string frames;    // "A-B" or "A-BxSTEP"; empty: every frame of the track
+    std::string out;       // frame files: a run of # (or %04d) is the frame number
+    bool resume = false;   // keep the frames already complete, clear dead runs' temporaries
+    std::string video;     // encode the frames into this .mp4 with ffmpeg
+    bool preview = false;  // half resolution
     bool aovs = false;
-    bool explain = false;    // the shot's passes, then each frame's total
+    bool explain = false;  // the shot's passes, then each frame's total
     std::vector<std::string> set;
     // Progress: a bar on a terminal, else the lines render farms parse. Tests force either.
     enum class Progress { kAuto, kBar, kLog } progress = Progress::kAuto;

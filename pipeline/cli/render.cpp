@@ -105,13 +105,13 @@ int run_render(const RenderCommand& cmd) {
         print_explain(shot, report, file.string(), shot_ms);
         print_pass({"output", true, "written through OpenImageIO, renamed when complete", out_ms,
                     cmd.out});
-        std::printf("  %-20s %9.1f ms  frame %.1f ms; %llu leaf + %llu bark + %llu surface "
-                    "sprites, %llu fragments\n",
-                    "total", total.ms(), frame_ms,
-                    static_cast<unsigned long long>(report.leaf_sprites),
-                    static_cast<unsigned long long>(report.bark_sprites),
-                    static_cast<unsigned long long>(report.surface_sprites),
-                    static_cast<unsigned long long>(report.fragments));
+        std::printf(
+            "  %-20s %9.1f ms  frame %.1f ms; %llu leaf + %llu bark + %llu surface "
+            "sprites, %llu fragments\n",
+            "total", total.ms(), frame_ms, static_cast<unsigned long long>(report.leaf_sprites),
+            static_cast<unsigned long long>(report.bark_sprites),
+            static_cast<unsigned long long>(report.surface_sprites),
+            static_cast<unsigned long long>(report.fragments));
     } else {
         std::printf("painted %s (%dx%d) in %.2f s\n", cmd.out.c_str(), frame.width, frame.height,
                     total.ms() / 1000.0);

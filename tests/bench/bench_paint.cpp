@@ -35,7 +35,9 @@ void paint_pass(benchmark::State& state, bool bare, bool exact) {
     uint64_t fragments = 0;
     for (auto _ : state) {
         FrameReport rep;
-        one.execute([&] { benchmark::DoNotOptimize(paint_frame(shot, still_view(shot.scene), settings, &rep)); });
+        one.execute([&] {
+            benchmark::DoNotOptimize(paint_frame(shot, still_view(shot.scene), settings, &rep));
+        });
         double paint_ms = 0;
         for (const auto& p : rep.passes)
             if (p.name == "paint") paint_ms = p.ms;

@@ -23,8 +23,9 @@ using test::run_pleinair;
 // A small landscape under a shadow-casting sun, the camera walking past two trees.
 std::string walk_scene(const std::string& track, int width = 96, int height = 64) {
     return R"({"fps": 12,
-        "camera": {"width": )" + std::to_string(width) + R"(, "height": )" +
-           std::to_string(height) + R"(, "fov": 50, "track": )" + track + R"(},
+        "camera": {"width": )" +
+           std::to_string(width) + R"(, "height": )" + std::to_string(height) +
+           R"(, "fov": 50, "track": )" + track + R"(},
         "sun": {"direction": [-0.5, 0.6, 0.4], "casts_shadows": true},
         "atmosphere": {"near": 10, "far": 150},
         "materials": {"grass": {"shader": "grass"}},
@@ -82,8 +83,8 @@ TEST_F(Animate, ChunksSingleFramesAndAWholeRunGiveTheSameBytes) {
     EXPECT_EQ(frame("whole", 5), frame("alone", 5));
     EXPECT_FALSE(fs::exists(dir_ / "alone" / "f_04.png"));
     // A still of the same frame (its light traced per particle, not cached by the shot).
-    auto still = run_pleinair("render " + s.string() + " --frame 5 -o " +
-                              (dir_ / "still.png").string());
+    auto still =
+        run_pleinair("render " + s.string() + " --frame 5 -o " + (dir_ / "still.png").string());
     ASSERT_EQ(still.exit_code, 0) << still.err;
     EXPECT_EQ(read_file(dir_ / "still.png"), frame("whole", 5));
     // Frame 5 is at 4/12 s.
@@ -95,7 +96,8 @@ TEST_F(Animate, ChunksSingleFramesAndAWholeRunGiveTheSameBytes) {
 }
 
 TEST_F(Animate, AStillCameraGivesIdenticalFrames) {
-    const fs::path s = scene(walk_scene(R"([{"time": 0, "position": [0, 2.5, 30], "look_at": [4, 5, 0]},
+    const fs::path s =
+        scene(walk_scene(R"([{"time": 0, "position": [0, 2.5, 30], "look_at": [4, 5, 0]},
                                            {"time": 0.25, "position": [0, 2.5, 30], "look_at": [4, 5, 0]}])"));
     ASSERT_EQ(animate(s, "still", "").exit_code, 0);
     for (int f = 2; f <= 4; ++f) EXPECT_EQ(frame("still", f), frame("still", 1)) << f;
@@ -121,10 +123,10 @@ TEST_F(Animate, ProgressAndSavedLinesForFarms) {
 TEST_F(Animate, BadRangesAndTracksExitTwoAndWriteNothing) {
     const fs::path s = scene(walk_scene(kWalk));
     const fs::path still = scene(R"({"families": {"oak": {"preset": "oak"}},
-        "trees": [{"family": "oak", "seed": 1}]})", "still.json");
-    const fs::path one_key =
-        scene(walk_scene(R"([{"time": 0, "position": [0, 2, 30], "look_at": [0, 3, 0]}])"),
-              "one.json");
+        "trees": [{"family": "oak", "seed": 1}]})",
+                                 "still.json");
+    const fs::path one_key = scene(
+        walk_scene(R"([{"time": 0, "position": [0, 2, 30], "look_at": [0, 3, 0]}])"), "one.json");
     const fs::path reversed = scene(walk_scene(R"([
         {"time": 1, "position": [0, 2, 30], "look_at": [0, 3, 0]},
         {"time": 0, "position": [0, 2, 20], "look_at": [0, 3, 0]}])"),
@@ -159,8 +161,8 @@ TEST_F(Animate, BadRangesAndTracksExitTwoAndWriteNothing) {
     auto no_number = run_pleinair("animate " + s.string() + " -o " + (dir_ / "x.png").string());
     EXPECT_EQ(no_number.exit_code, 2);
     EXPECT_NE(no_number.err.find("frame number"), std::string::npos) << no_number.err;
-    auto outside = run_pleinair("render " + s.string() + " --frame 9 -o " +
-                                (dir_ / "r.png").string());
+    auto outside =
+        run_pleinair("render " + s.string() + " --frame 9 -o " + (dir_ / "r.png").string());
     EXPECT_EQ(outside.exit_code, 2);
     EXPECT_FALSE(fs::exists(dir_ / "r.png"));
 }
@@ -202,8 +204,8 @@ TEST_F(Animate, AKilledRunResumesToTheSameBytes) {
             EXPECT_EQ(read_file(dir_ / "killed" / name), read_file(dir_ / "clean" / name)) << f;
         }
     }
-    auto resumed = run_pleinair("animate " + s.string() + " -o " + out +
-                                " --resume --progress log");
+    auto resumed =
+        run_pleinair("animate " + s.string() + " -o " + out + " --resume --progress log");
     ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
     size_t saved = 0, pos = 0;
     while ((pos = resumed.out.find("Saved: ", pos)) != std::string::npos) ++saved, ++pos;
@@ -223,9 +225,10 @@ TEST_F(Animate, VideoHoldsEveryFrame) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("Saved: " + (dir_ / "walk.mp4").string()), std::string::npos);
     const std::string probe = dir_.string() + "/probe.txt";
-    const std::string cmd = "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
-                            "stream=nb_read_frames,width,height,pix_fmt -of csv=p=0 '" +
-                            (dir_ / "walk.mp4").string() + "' > '" + probe + "'";
+    const std::string cmd =
+        "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+        "stream=nb_read_frames,width,height,pix_fmt -of csv=p=0 '" +
+        (dir_ / "walk.mp4").string() + "' > '" + probe + "'";
     ASSERT_EQ(std::system(cmd.c_str()), 0) << "ffprobe (Debian package ffmpeg) must be installed";
     EXPECT_EQ(read_file(probe), "96,64,yuv420p,7\n");
 }

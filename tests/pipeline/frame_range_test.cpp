@@ -18,8 +18,8 @@ TEST(FrameRange, ParsesFramesRangesAndSteps) {
 }
 
 TEST(FrameRange, RefusesWhatIsNotARange) {
-    for (const char* bad : {"10-1", "x", "", "1-", "-3", "1-10x0", "1-10x", "a-b", "1.5",
-                            "1-2-3", " 1-2", "1234567890"}) {
+    for (const char* bad : {"10-1", "x", "", "1-", "-3", "1-10x0", "1-10x", "a-b", "1.5", "1-2-3",
+                            " 1-2", "1234567890"}) {
         SCOPED_TRACE(bad);
         try {
             parse_frame_range(bad);
@@ -31,8 +31,7 @@ TEST(FrameRange, RefusesWhatIsNotARange) {
 }
 
 TEST(FramePattern, HashesAndPrintfBecomeTheFrameNumber) {
-    EXPECT_EQ(parse_frame_pattern("out/walk/frame_####.png").path(42),
-              "out/walk/frame_0042.png");
+    EXPECT_EQ(parse_frame_pattern("out/walk/frame_####.png").path(42), "out/walk/frame_0042.png");
     EXPECT_EQ(parse_frame_pattern("f#.exr").path(123), "f123.exr");
     EXPECT_EQ(parse_frame_pattern("shot.%04d.tif").path(7), "shot.0007.tif");
     EXPECT_EQ(parse_frame_pattern("shot.%d.png").path(7), "shot.7.png");

@@ -34,7 +34,8 @@ SceneDesc lit_scene(const std::string& render = R"({"samples": 1})") {
         "families": {"birch": {"preset": "birch"}, "shrub": {"preset": "shrub"}},
         "trees": [{"family": "birch", "seed": 3, "position": [8, 0, 18]},
                   {"family": "shrub", "seed": 4, "position": [-3, 0, 25]}],
-        "render": )" + render + "}",
+        "render": )" + render +
+                           "}",
                        "test");
 }
 
