@@ -107,7 +107,8 @@ jobcomp_states() {
         /var/log/slurm/jobcomp.log | sort -n -s -k1,1 | awk '{last[$1] = $0} END {for (t in last) print last[t]}' | sort -n
 }
 expect_states() {  # expect_states WHAT ACTUAL EXPECTED
-    if [ "$2" = "$3" ]; then pass "$1"; else fail "$1: got [$(echo $2)], expected [$(echo $3)]"; fi
+    if [ "$2" = "$3" ]; then pass "$1"
+    else fail "$1: got [$(tr '\n' ';' <<<"$2")], expected [$(tr '\n' ';' <<<"$3")]"; fi
 }
 all_completed() {  # the expected task_states of N tasks all COMPLETED with exit 0
     local t
@@ -163,6 +164,7 @@ timeout 150 "$submit" "$SCENE" "$FIRST" "$LAST" "$CHUNK" farm/frame_####.png --v
 check "the same submit again exits 0 ($((SECONDS - t0))s)" [ "$rc" = 0 ]
 read -r A2 E2 <<<"$(ids_of resubmit.out)" || true
 expect_states "its tasks COMPLETED with exit 0" "$(task_states "${A2:-0}")" "$(all_completed $TASKS)"
+expect_states "its encode job COMPLETED with exit 0" "$(job_state "${E2:-0}")" "COMPLETED 0:0"
 check "its tasks repainted nothing (every frame was already complete)" \
     [ "$(grep -l '^every frame was already complete$' farm/render_"${A2:-0}"_*.log 2>/dev/null | wc -l)" = "$TASKS" ]
 check "no frame file was rewritten" [ -z "$(find farm -name 'frame_*.png' -newer marker)" ]
