@@ -9,7 +9,7 @@ DEPS := build-essential cmake ninja-build libopenmesh-dev libglm-dev libopenimag
         libgtest-dev libbenchmark-dev libhwy-dev ffmpeg
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps build render test test-sanitize bench format reference golden clean
+.PHONY: all deps build render test test-sanitize test-farm bench format reference golden clean
 
 all: build
 
@@ -35,6 +35,11 @@ render: build
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# Renders a small shot on a real one-node Slurm cluster that the test starts and stops (as root;
+# installs slurmctld, slurmd and munge if missing): tests/farm/test_farm.sh.
+test-farm: build
+	PLEINAIR=$(abspath $(BUILD))/pleinair tests/farm/test_farm.sh
 
 # The same tests built with AddressSanitizer and UndefinedBehaviorSanitizer.
 test-sanitize: deps
