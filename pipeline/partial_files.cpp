@@ -24,6 +24,24 @@ namespace {
 
 constexpr std::string_view kTag = ".partial-";
 
+// This machine's name as it stands in a partial name: letters, digits, '-' and '.', so that
+// writers on several machines sharing a folder never take each other's temporaries.
+const std::string& this_host() {
+    static const std::string host = [] {
+        char buf[256] = {};
+        if (::gethostname(buf, sizeof buf - 1) != 0) return std::string("localhost");
+        std::string h;
+        for (const char* c = buf; *c; ++c)
+            h += std::isalnum(static_cast<unsigned char>(*c)) || *c == '-' || *c == '.' ? *c : '_';
+        return h.empty() ? std::string("localhost") : h;
+    }();
+    return host;
+}
+
+bool host_char(char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '.' || c == '_';
+}
+
 // A target named with a trailing separator ("out/") names the folder itself.
 fs::path named(const fs::path& target) {
     return target.has_filename() ? target : target.parent_path();
@@ -34,7 +52,11 @@ fs::path named(const fs::path& target) {
 fs::path partial_path(const fs::path& target) {
     fs::path t = named(target);
     std::string name = ".";
-    name.append(t.filename().string()).append(kTag).append(std::to_string(::getpid()));
+    name.append(t.filename().string())
+        .append(kTag)
+        .append(std::to_string(::getpid()))
+        .append("@")
+        .append(this_host());
     return t.parent_path() / name;
 }
 
@@ -50,6 +72,13 @@ long partial_pid(const std::string& name) {
     }
     if (digits == 0 || pid == 0) return 0;
     if (i == name.size()) return pid;
+    // "@HOST": the machine the writer ran on.
+    if (name[i] == '@') {
+        if (i + 1 == name.size()) return 0;
+        for (++i; i < name.size(); ++i)
+            if (!host_char(name[i])) return 0;
+        return pid;
+    }
     // The older image form ends in the image's extension: ".STEM.partial-PID.EXT".
     if (name[i] != '.' || i + 1 == name.size()) return 0;
     for (++i; i < name.size(); ++i)
@@ -58,6 +87,12 @@ long partial_pid(const std::string& name) {
 }
 
 bool is_partial_name(const std::string& name) { return partial_pid(name) != 0; }
+
+std::string partial_host(const std::string& name) {
+    if (partial_pid(name) == 0) return "";
+    const size_t at = name.rfind('@');
+    return at != std::string::npos && at > name.rfind(kTag) ? name.substr(at + 1) : "";
+}
 
 // The registry. The handlers may run at any instruction of any thread, so it is a fixed array of
 // fixed buffers, no allocation, and each slot is guarded like a seqlock: a writer claims a free
@@ -241,8 +276,12 @@ size_t clear_partials(const fs::path& dir) {
     std::error_code ec;
     size_t removed = 0;
     for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-        const long pid = partial_pid(it->path().filename().string());
+        const std::string name = it->path().filename().string();
+        const long pid = partial_pid(name);
         if (pid == 0) continue;
+        // Another machine's writer cannot be asked whether it lives: left to its own machine.
+        if (const std::string host = partial_host(name); !host.empty() && host != this_host())
+            continue;
         // kill(pid, 0) fails with ESRCH only when no such process exists (EPERM: it exists).
         const bool alive =
             pid == ::getpid() || ::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH;

@@ -7,8 +7,9 @@
 
 namespace pleinair {
 
-// `.NAME.partial-PID` beside `target` (NAME is its file name, extension included), PID this
-// process's id: two runs writing the same target never share a temporary.
+// `.NAME.partial-PID@HOST` beside `target` (NAME is its file name, extension included), PID
+// this process's id and HOST this machine's name: two runs writing the same target, on one
+// machine or on two that share the folder, never share a temporary.
 std::filesystem::path partial_path(const std::filesystem::path& target);
 
 // True for a file or folder name `.NAME.partial-PID` (PID decimal digits), and for the
@@ -18,6 +19,8 @@ bool is_partial_name(const std::string& name);
 
 // The PID in a partial name, 0 when the name is not partial.
 long partial_pid(const std::string& name);
+// The HOST in a partial name; empty for a name without one (an earlier build's, or not partial).
+std::string partial_host(const std::string& name);
 
 // One temporary file or folder being written for `target`. Registered for the signal handlers
 // from construction to destruction; the destructor removes it unless commit() moved it into
@@ -52,8 +55,9 @@ class PartialOutput {
 // ended (a shell reports 128 + signal). Only async-signal-safe calls run in the handler.
 void install_partial_cleanup();
 
-// Removes the temporaries in `dir` (not below it) whose writer is gone: a partial name whose PID
-// is no live process, as a SIGKILL or a power cut leaves. A temporary of a live process is
+// Removes the temporaries in `dir` (not below it) whose writer is gone: a partial name of this
+// machine (or without a machine) whose PID is no live process, as a SIGKILL or a power cut
+// leaves. Another machine's temporaries are left to it: its writer may be alive. A temporary of a live process is
 // another run's write in progress and stays (as does, rarely, a dead writer's whose PID has been
 // reused: it is still never trusted as output). Returns how many were removed.
 size_t clear_partials(const std::filesystem::path& dir);

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 
 #include "pipeline/cli/commands.h"
@@ -191,41 +192,49 @@ int run_animate(const AnimateCommand& cmd) {
     if (!dir.empty()) fs::create_directories(dir);
     if (cmd.resume) clear_partials(dir.empty() ? fs::path(".") : dir);
 
+    std::vector<int> todo;
+    for (int f : frames)
+        if (!cmd.resume || !fs::exists(pattern.path(f))) todo.push_back(f);
+    const double fps = scene.fps;
     // Every frame of an animation takes the still sun's light from the shot, so a chunk and a
-    // whole run share one way of computing it.
+    // whole run share one way of computing it. Nothing to paint (a resumed shot that is
+    // complete, an encode job): no shot.
     ShotOptions options;
     options.cache_sun_light = true;
-    const Shot shot = build_shot(std::move(scene), options);
+    const std::unique_ptr<const Shot> shot =
+        todo.empty() ? nullptr
+                     : std::make_unique<const Shot>(build_shot(std::move(scene), options));
     const double shot_ms = total.ms();
-    const FrameSettings settings = scene_frame_settings(shot.scene, cmd.aovs);
     const bool bar = cmd.progress == AnimateCommand::Progress::kBar ||
                      (cmd.progress == AnimateCommand::Progress::kAuto && isatty(STDOUT_FILENO));
     ProgressReport progress(frames.size(), bar);
     std::vector<std::pair<double, int>> times;  // ms, frame
     for (int f : frames) {
         const std::string path = pattern.path(f);
-        if (cmd.resume && fs::exists(path)) {
+        if (!std::binary_search(todo.begin(), todo.end(), f)) {
             progress.frame_done(path, false, 0);
             continue;
         }
+        const Shot& s = *shot;
+        const FrameSettings settings = scene_frame_settings(s.scene, cmd.aovs);
         PassTimer t;
         FrameReport report;
         try {
-            const Frame frame = paint_frame(
-                shot, view_at(shot.scene, frame_time(f, shot.scene.fps)), settings, &report);
+            const Frame frame =
+                paint_frame(s, view_at(s.scene, frame_time(f, s.scene.fps)), settings, &report);
             write_frame(path, frame);
         } catch (const InputError&) {
             throw;
         } catch (const std::exception& e) {
             throw std::runtime_error("frame " + std::to_string(f) + ": " + e.what());
         }
-        if (cmd.explain && times.empty()) print_explain(shot, report, file.string(), shot_ms);
+        if (cmd.explain && times.empty()) print_explain(s, report, file.string(), shot_ms);
         times.push_back({t.ms(), f});
         progress.frame_done(path, true, times.back().first);
     }
     progress.finish();
     if (!cmd.video.empty()) {
-        encode_video(cmd.video, pattern, frames.front(), frames.size(), shot.scene.fps);
+        encode_video(cmd.video, pattern, frames.front(), frames.size(), fps);
         if (!bar) std::printf("Saved: %s\n", cmd.video.c_str());
     }
     if (!times.empty()) {

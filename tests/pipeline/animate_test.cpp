@@ -212,6 +212,11 @@ TEST_F(Animate, AKilledRunResumesToTheSameBytes) {
     EXPECT_EQ(saved, 7 - before) << "complete frames are kept, not painted again";
     for (const auto& e : fs::directory_iterator(dir_ / "killed"))
         EXPECT_FALSE(is_partial_name(e.path().filename().string())) << e.path();
+    // Once complete, a resumed run paints nothing and builds no shot.
+    auto again = run_pleinair("animate " + s.string() + " -o " + out + " --resume --progress log");
+    ASSERT_EQ(again.exit_code, 0) << again.err;
+    EXPECT_EQ(again.out.find("Saved: "), std::string::npos);
+    EXPECT_NE(again.out.find("every frame was already complete"), std::string::npos);
     for (int f = 1; f <= 7; ++f) {
         char name[16];
         std::snprintf(name, sizeof name, "f_%02d.png", f);

@@ -53,16 +53,20 @@ long dead_pid() {
 
 TEST(PartialFiles, NamesAreRecognisedByOnePredicate) {
     const std::string pid = std::to_string(::getpid());
-    EXPECT_EQ(partial_path("out/frame.png"), fs::path("out/.frame.png.partial-" + pid));
-    EXPECT_EQ(partial_path("out/tree/"), fs::path("out/.tree.partial-" + pid));
+    const std::string at = "@" + partial_host(partial_path("x").filename().string());
+    EXPECT_EQ(partial_path("out/frame.png"), fs::path("out/.frame.png.partial-" + pid + at));
+    EXPECT_EQ(partial_path("out/tree/"), fs::path("out/.tree.partial-" + pid + at));
     EXPECT_TRUE(is_partial_name(partial_path("a/x.exr").filename().string()));
     EXPECT_TRUE(is_partial_name(".x.png.partial-12"));
     EXPECT_TRUE(is_partial_name(".x.partial-12.png"));  // the older image form
     EXPECT_TRUE(is_partial_name(".oak-001-seed-5.partial-7"));
     EXPECT_EQ(partial_pid(".x.png.partial-4321"), 4321);
-    for (const char* real :
-         {"x.png", ".x.png", "x.png.partial-12", ".partial-12", ".x.partial-", ".x.partial-12a",
-          ".x.partial-0", ".x.partial-12.", ".x.partial-1.p-g"})
+    EXPECT_EQ(partial_pid(".x.png.partial-4321@node-7.farm"), 4321);
+    EXPECT_EQ(partial_host(".x.png.partial-4321@node-7.farm"), "node-7.farm");
+    EXPECT_EQ(partial_host(".x.png.partial-4321"), "");
+    for (const char* real : {"x.png", ".x.png", "x.png.partial-12", ".partial-12", ".x.partial-",
+                             ".x.partial-12a", ".x.partial-0", ".x.partial-12.", ".x.partial-1.p-g",
+                             ".x.partial-12@", ".x.partial-12@a/b", ".x.partial-@host"})
         EXPECT_FALSE(is_partial_name(real)) << real;
 }
 
@@ -76,10 +80,21 @@ TEST(PartialFiles, ClearPartialsRemovesDeadWritersLeftoversOnly) {
     write_text(dir / (".x.partial-" + dead + ".png"), "torn");  // an older build's leftover
     fs::create_directories(dir / (".tree.partial-" + dead) / "sub");
     write_text(dir / (".tree.partial-" + dead) / "sub" / "render.obj", "v");
-    const std::vector<std::string> kept = {"x.png", ".hidden", "notes.partial-" + dead,
-                                           ".y.png.partial-" + live, ".z.partial-1"};  // init
+    // This machine's own names carry its host.
+    const std::string ours = partial_path(dir / "w.png").filename().string();
+    const std::string host = partial_host(ours);
+    ASSERT_FALSE(host.empty());
+    EXPECT_EQ(partial_pid(ours), ::getpid());
+    write_text(dir / (".w.png.partial-" + dead + "@" + host), "torn");
+    const std::vector<std::string> kept = {
+        "x.png",
+        ".hidden",
+        "notes.partial-" + dead,
+        ".y.png.partial-" + live,
+        ".z.partial-1",                                         // init
+        ".v.png.partial-" + dead + "@" + host + "-elsewhere"};  // another machine's writer
     for (const auto& name : kept) write_text(dir / name, name);
-    EXPECT_EQ(clear_partials(dir), 3u);
+    EXPECT_EQ(clear_partials(dir), 4u);
     std::vector<std::string> left;
     for (const auto& e : fs::directory_iterator(dir)) left.push_back(e.path().filename());
     std::sort(left.begin(), left.end());
@@ -239,7 +254,9 @@ TEST(Signals, SigtermAndSigintRemoveTheTemporaries) {
             {"family", "--preset", "shrub", "--count", "400", "-o", (dir / "fam").string()});
         ASSERT_GT(pid, 0);
         // Members are written into the temporary folder for seconds; signal once it holds a few.
-        const fs::path tmp = dir / (".fam.partial-" + std::to_string(pid));
+        const fs::path tmp =
+            dir / (".fam.partial-" + std::to_string(pid) + "@" +
+                   partial_host(partial_path("x").filename().string()));
         bool writing = false;
         for (int i = 0; i < 600 && !writing; ++i) {
             std::error_code ec;
