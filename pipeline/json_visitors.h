@@ -394,6 +394,9 @@ class Documenter {
     }
 };
 
+inline void apply_overrides(json& doc, const std::vector<std::string>& overrides,
+                            std::vector<Problem>& problems, std::set<std::string>& overridden);
+
 // Parses text (comments allowed) into a JSON object and applies "POINTER=VALUE" overrides
 // (VALUE parsed as JSON, else taken as a string), recording their pointers in `overridden` and
 // their problems in `problems`. Throws InputError on a syntax error or a non-object.
@@ -459,7 +462,14 @@ inline json parse_document(const std::string& text, const std::string& source,
     }
     if (!doc.is_object())
         throw InputError(source, "", "expected a JSON object, got " + describe(doc));
+    apply_overrides(doc, overrides, problems, overridden);
+    return doc;
+}
 
+// Applies "POINTER=VALUE" overrides (VALUE parsed as JSON, else taken as a string), recording
+// their pointers in `overridden` and their problems in `problems`.
+inline void apply_overrides(json& doc, const std::vector<std::string>& overrides,
+                            std::vector<Problem>& problems, std::set<std::string>& overridden) {
     for (const auto& o : overrides) {
         auto eq = o.find('=');
         std::string ptr = o.substr(0, eq);
@@ -478,7 +488,6 @@ inline json parse_document(const std::string& text, const std::string& source,
             problems.push_back({ptr, "--set cannot place a value here"});
         }
     }
-    return doc;
 }
 
 // Appends " (set by --set)" to problems under an overridden pointer.

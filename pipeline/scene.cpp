@@ -12,6 +12,7 @@
 namespace pleinair {
 
 using namespace json_detail;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -531,13 +532,38 @@ void parse_groups(const json& doc, SceneDesc& s, std::vector<Problem>& problems,
               });
 }
 
+// A scene that names another in "extends" is that scene with its own keys merged over it (JSON
+// merge patch, RFC 7386: objects merge key by key, anything else, lists too, replaces, null
+// removes). The file is found beside the extending one; chains of up to 8 are followed.
+json resolve_extends(json doc, const std::string& source, int depth = 0) {
+    auto it = doc.find("extends");
+    if (it == doc.end()) return doc;
+    if (!it->is_string())
+        throw InputError(source, "/extends", "expected a scene file name, got " + describe(*it));
+    if (depth >= 8)
+        throw InputError(source, "/extends", "more than 8 scenes extend each other (a cycle?)");
+    fs::path base = fs::path(source).parent_path() / it->get<std::string>();
+    if (!fs::exists(base) && base.extension().empty()) base += ".json";
+    if (!fs::is_regular_file(base))
+        throw InputError(source, "/extends", "no scene file " + base.string());
+    std::vector<Problem> problems;
+    std::set<std::string> unused;
+    json base_doc = parse_document(read_input_file(base), base.string(), {}, problems, unused);
+    if (!problems.empty()) throw InputError(base.string(), problems);
+    base_doc = resolve_extends(std::move(base_doc), base.string(), depth + 1);
+    doc.erase(it);
+    base_doc.merge_patch(doc);
+    return base_doc;
+}
+
 }  // namespace
 
 SceneDesc parse_scene(const std::string& text, const std::string& source,
                       const std::vector<std::string>& overrides) {
     std::vector<Problem> problems;
     std::set<std::string> overridden;
-    json doc = parse_document(text, source, overrides, problems, overridden);
+    json doc = resolve_extends(parse_document(text, source, {}, problems, overridden), source);
+    apply_overrides(doc, overrides, problems, overridden);
     SceneDesc s;
     std::set<std::string> plain;
     Reader reader(doc, problems, plain);
@@ -698,6 +724,9 @@ SceneDesc load_scene(const std::filesystem::path& file, const std::vector<std::s
 std::string scene_reference() {
     Documenter d;
     d.out << "| key | default | range | unit | meaning |\n|---|---|---|---|---|\n";
+    d.out << "| `/extends` |  |  |  | Another scene file (beside this one; `.json` may be left "
+             "out) that this one starts from: its keys are merged over it, objects key by key, "
+             "anything else (lists too) replaced, `null` removing a key. |\n";
     SceneDesc defaults;
     visit_scene(defaults, d);
     d.object("camera/track/N",
