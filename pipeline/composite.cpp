@@ -109,6 +109,13 @@ struct TileLayer {
     size_t at(int x, int y) const { return static_cast<size_t>(y - y0) * kTile + (x - x0); }
     bool open(int x, int y) const { return through[at(x, y)] > cutoff; }
     bool full() const { return saturated == w * h; }
+    // Whether any pixel of the box [x0, x1] x [y0, y1] (inside the tile) can still change.
+    bool any_open(int bx0, int by0, int bx1, int by1) const {
+        for (int y = by0; y <= by1; ++y)
+            for (int x = bx0; x <= bx1; ++x)
+                if (open(x, y)) return true;
+        return false;
+    }
 };
 
 // What the tile painter shares across its sprites.
@@ -208,6 +215,8 @@ struct TilePainter {
         const SpriteMaterial& m = shot.materials[sp.material];
         const SpriteSpan r =
             sprite_span(sp, layer.x0, layer.y0, layer.x0 + layer.w, layer.y0 + layer.h);
+        // Hidden here by nearer strokes: nothing to build or shade.
+        if (!layer.any_open(r.x0, r.y0, r.x1, r.y1)) return;
         // Light varying over the sprite moves its lightness per fragment: no ramp then.
         const ShadowGrid* grid = sp.grid >= 0 ? &set.grids[static_cast<size_t>(sp.grid)] : nullptr;
         // The sprite's colour ramp (palette, tint and atmosphere folded in), when the settings

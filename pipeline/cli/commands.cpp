@@ -166,15 +166,15 @@ int run_presets(const PresetsCommand& cmd) {
         return 0;
     }
     for (const auto& p : list_tree_presets())
-        std::printf("tree     %-16s %s\n", p.name.c_str(), p.description.c_str());
+        std::printf("tree     %-18s %s\n", p.name.c_str(), p.description.c_str());
     for (const auto& name : preset_names("shaders"))
-        std::printf("shader   %-16s %s\n", name.c_str(),
+        std::printf("shader   %-18s %s\n", name.c_str(),
                     load_shader_preset(name).description.c_str());
     for (const auto& name : preset_names("palettes"))
-        std::printf("palette  %-16s %s\n", name.c_str(), load_palette(name).description.c_str());
+        std::printf("palette  %-18s %s\n", name.c_str(), load_palette(name).description.c_str());
     for (const auto& name : preset_names("scenes")) {
         auto file = resolve_preset("scenes", name, "presets");
-        std::printf("scene    %-16s %s\n", name.c_str(), load_scene(file).description.c_str());
+        std::printf("scene    %-18s %s\n", name.c_str(), load_scene(file).description.c_str());
     }
     return 0;
 }
