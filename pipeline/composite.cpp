@@ -127,6 +127,7 @@ struct TilePainter {
     Frame& frame;
     int n;  // samples per pixel axis
     TileLayer& layer;
+    StrokeLayer& out;
     uint64_t fragments = 0;
 
     // Premultiplied "under" of one stroke fragment: it shows through what lies in front.
@@ -230,21 +231,14 @@ struct TilePainter {
         samples(idx, r, m, pf, use_ramp ? &ramp : nullptr, grid);
     }
 
-    // The layer over what the frame holds (background and underpainting), and its AOVs.
+    // The tile's part of the frame's stroke layer, and its AOVs.
     void finish() {
         for (int y = layer.y0; y < layer.y0 + layer.h; ++y)
             for (int x = layer.x0; x < layer.x0 + layer.w; ++x) {
                 const size_t li = layer.at(x, y), pi = static_cast<size_t>(y) * frame.width + x;
-                const float t = layer.through[li];
-                const float* c = &layer.color[3 * li];
-                float* px = &frame.rgba[4 * pi];
-                px[0] = c[0] + t * px[0];
-                px[1] = c[1] + t * px[1];
-                px[2] = c[2] + t * px[2];
-                px[3] = (1.0f - t) + t * px[3];
-                if (!plan.aovs) continue;
-                frame.alpha[pi] = 1.0f - t;
-                if (layer.front[li] == TileLayer::kNone) continue;
+                std::copy_n(&layer.color[3 * li], 3, &out.color[3 * pi]);
+                out.through[pi] = layer.through[li];
+                if (!plan.aovs || layer.front[li] == TileLayer::kNone) continue;
                 const Sprite& sp = set.sprites[layer.front[li]];
                 frame.depth[pi] = sp.depth;
                 frame.object_id[pi] = static_cast<float>(sp.object_id);
@@ -254,8 +248,8 @@ struct TilePainter {
 };
 
 // Benchmarks: each sprite's footprint blended with a constant colour, back to front straight
-// into the frame: the cost floor of a fragment.
-uint64_t paint_bare(const Sprite& sp, const SpriteSpan& r, Frame& frame) {
+// into the layer's colour: the cost floor of a fragment.
+uint64_t paint_bare(const Sprite& sp, const SpriteSpan& r, StrokeLayer& out) {
     uint64_t fragments = 0;
     for (int y = r.y0; y <= r.y1; ++y) {
         int xa = r.x0, xb = r.x1;
@@ -265,11 +259,10 @@ uint64_t paint_bare(const Sprite& sp, const SpriteSpan& r, Frame& frame) {
             float s = 0.5f + dx * r.sx + dy * r.sy, t = 0.5f + dx * r.txx + dy * r.tyy;
             if (s <= 0.0f || s >= 1.0f || t <= 0.0f || t >= 1.0f) continue;
             ++fragments;
-            float* px = &frame.rgba[4 * (static_cast<size_t>(y) * frame.width + x)];
+            float* px = &out.color[3 * (static_cast<size_t>(y) * out.width + x)];
             px[0] = 0.1f + 0.5f * px[0];
             px[1] = 0.2f + 0.5f * px[1];
             px[2] = 0.05f + 0.5f * px[2];
-            px[3] = 0.5f + 0.5f * px[3];
         }
     }
     return fragments;
@@ -325,7 +318,8 @@ Frame make_frame(const Camera& cam, bool aovs) {
     return frame;
 }
 
-void paint_background(const SceneDesc& scene, const Camera& cam, Frame& frame) {
+void paint_background(const SceneDesc& scene, const Camera& cam, const StrokeLayer& strokes,
+                      Frame& frame) {
     const Background& bg = scene.background;
     const Color lin[4] = {srgb_to_linear(bg.canvas ? bg.canvas_color : bg.sky_zenith),
                           srgb_to_linear(bg.sky_horizon), srgb_to_linear(bg.ground_horizon),
@@ -347,6 +341,7 @@ void paint_background(const SceneDesc& scene, const Camera& cam, Frame& frame) {
         const Color* r0 = &lattice[static_cast<size_t>(j) * gw];
         const Color* r1 = r0 + gw;
         for (int x = 0; x < cam.width; ++x) {
+            if (strokes.covered(static_cast<size_t>(y) * cam.width + x)) continue;
             const int i = x / kBgStep;
             const float fx = static_cast<float>(x % kBgStep) / kBgStep;
             Color c = mix(mix(r0[i], r0[i + 1], fx), mix(r1[i], r1[i + 1], fx), fy);
@@ -356,8 +351,14 @@ void paint_background(const SceneDesc& scene, const Camera& cam, Frame& frame) {
     });
 }
 
-uint64_t paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins& bins,
-                       const FramePlan& plan, const RenderSettings& rs, Frame& frame) {
+StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins& bins,
+                          const FramePlan& plan, const RenderSettings& rs, Frame& frame) {
+    StrokeLayer out;
+    out.width = frame.width, out.height = frame.height;
+    out.cutoff = rs.coverage_cutoff;
+    const size_t npix = static_cast<size_t>(frame.width) * frame.height;
+    out.color.assign(3 * npix, 0.0f);
+    out.through.assign(npix, 1.0f);
     const int n = rs.samples >= 16 ? 4 : rs.samples >= 4 ? 2 : 1;
     std::vector<uint64_t> tile_fragments(bins.bins.size(), 0);
     tbb::parallel_for(size_t{0}, bins.bins.size(), [&](size_t tile) {
@@ -370,25 +371,42 @@ uint64_t paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins& b
         if (plan.bare_blend) {
             for (uint32_t idx : bin)
                 tile_fragments[tile] += paint_bare(
-                    set.sprites[idx], sprite_span(set.sprites[idx], px0, py0, px1, py1), frame);
+                    set.sprites[idx], sprite_span(set.sprites[idx], px0, py0, px1, py1), out);
             return;
         }
         // Front to back (the bin's order reversed), until every pixel of the tile is covered:
         // the strokes behind would not show.
         auto layer = std::make_unique<TileLayer>(px0, py0, px1, py1, rs.coverage_cutoff);
-        TilePainter painter{shot, set, plan, rs, frame, n, *layer};
+        TilePainter painter{shot, set, plan, rs, frame, n, *layer, out};
         for (auto it = bin.rbegin(); it != bin.rend() && !layer->full(); ++it) painter.paint(*it);
         painter.finish();
         tile_fragments[tile] = painter.fragments;
     });
-    uint64_t fragments = 0;
-    for (uint64_t f : tile_fragments) fragments += f;
-    if (plan.aovs)
-        for (float& d : frame.depth)
+    for (uint64_t f : tile_fragments) out.fragments += f;
+    return out;
+}
+
+void composite_strokes(const StrokeLayer& strokes, const FramePlan& plan, Frame& frame) {
+    tbb::parallel_for(0, frame.height, [&](int y) {
+        for (int x = 0; x < frame.width; ++x) {
+            const size_t pi = static_cast<size_t>(y) * frame.width + x;
+            const float t = strokes.through[pi];
+            const float* c = &strokes.color[3 * pi];
+            float* px = &frame.rgba[4 * pi];
+            // A covered pixel holds no background: what lies under adds at most the cutoff.
+            const float under = strokes.covered(pi) ? 0.0f : t;
+            px[0] = c[0] + under * px[0];
+            px[1] = c[1] + under * px[1];
+            px[2] = c[2] + under * px[2];
+            px[3] = (1.0f - t) + t * (strokes.covered(pi) ? 1.0f : px[3]);
+            if (!plan.aovs) continue;
+            frame.alpha[pi] = 1.0f - t;
             // Background: as far as a float goes (finite, as EXR readers expect, and sorting
             // behind everything, unlike 0, which reads as nearest).
-            if (!std::isfinite(d)) d = std::numeric_limits<float>::max();
-    return fragments;
+            if (!std::isfinite(frame.depth[pi]))
+                frame.depth[pi] = std::numeric_limits<float>::max();
+        }
+    });
 }
 
 }  // namespace pleinair

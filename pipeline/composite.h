@@ -16,24 +16,42 @@ struct Shot;
 struct SceneDesc;
 class RayScene;
 
-// A frame of the camera's size: background everywhere, AOV buffers allocated when planned.
+// A frame of the camera's size, all zero, AOV buffers allocated when planned.
 Frame make_frame(const Camera& cam, bool aovs);
 
-// Sky and ground seen from the camera (or the canvas colour), with slow noise.
-void paint_background(const SceneDesc& scene, const Camera& cam, Frame& frame);
+// The strokes of a frame composited front to back, before what lies under them: per pixel the
+// premultiplied colour gathered and the light still let through (1 where no stroke is).
+struct StrokeLayer {
+    int width = 0, height = 0;
+    float cutoff = 0;            // render/coverage_cutoff
+    std::vector<float> color;    // 3 per pixel
+    std::vector<float> through;  // 1 per pixel
+    uint64_t fragments = 0;      // pixel samples shaded
+    // Nothing under the strokes can change the pixel by more than the cutoff.
+    bool covered(size_t pixel) const { return !(through[pixel] > cutoff); }
+};
+
+// Composites the binned sprites nearest first, skipping pixels the nearer strokes already
+// cover (at most coverage_cutoff of their light left). Fills the AOVs of the nearest stroke
+// more than half opaque when the plan asks.
+StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& sprites, const TileBins& bins,
+                          const FramePlan& plan, const RenderSettings& settings, Frame& frame);
+
+// Sky and ground seen from the camera (or the canvas colour), with slow noise, where the
+// strokes let it show.
+void paint_background(const SceneDesc& scene, const Camera& cam, const StrokeLayer& strokes,
+                      Frame& frame);
 
 // A flat palette colour and a depth where the camera sees terrain, water, rocks or trunks, at
-// underpaint_scale of the resolution, so no sky shows between strokes. Coverage is
-// interpolated, so silhouettes stay soft. Returns the camera rays traced.
+// underpaint_scale of the resolution, so no sky shows between strokes, over the background.
+// Coverage is interpolated, so silhouettes stay soft. Only cells under pixels the strokes leave
+// open are traced (all of them when the AOVs ask for depth). Returns the camera rays traced.
 uint64_t paint_underpainting(const Shot& shot, const FrameView& view, const FramePlan& plan,
                              const RenderSettings& settings, const RayScene* sun_rays,
-                             Frame& frame);
+                             const StrokeLayer& strokes, Frame& frame);
 
-// Composites the binned sprites over what the frame holds, nearest first, skipping pixels the
-// nearer strokes already cover (less than 1/2048 of their light left); the result is the
-// back-to-front "over" of every sprite to within that. Returns the fragments (pixel samples)
-// shaded.
-uint64_t paint_strokes(const Shot& shot, const SpriteSet& sprites, const TileBins& bins,
-                       const FramePlan& plan, const RenderSettings& settings, Frame& frame);
+// The strokes over what the frame holds beneath them: the back-to-front "over" of everything,
+// to within the cutoff.
+void composite_strokes(const StrokeLayer& strokes, const FramePlan& plan, Frame& frame);
 
 }  // namespace pleinair

@@ -86,25 +86,32 @@ Frame paint_frame(const Shot& shot, const FrameView& view, const FrameSettings& 
         {"bin", true, "tiles paint in parallel", t.ms(),
          std::to_string(bins.bins.size()) + " tiles of " + std::to_string(kTile) + " px"});
 
+    // Strokes first, nearest first: the background and underpainting are then needed only
+    // where the strokes leave some light through.
     t = PassTimer();
     Frame frame = make_frame(cam, plan.aovs);
-    paint_background(shot.scene, cam, frame);
+    const StrokeLayer strokes = paint_strokes(shot, sprites, bins, plan, rs, frame);
+    rep.fragments = strokes.fragments;
+    rep.passes.push_back({"paint", true,
+                          "strokes front to back, tiles in parallel, each until it is covered",
+                          t.ms(), std::to_string(rep.fragments) + " fragments"});
+    t = PassTimer();
+    paint_background(shot.scene, cam, strokes, frame);
     rep.passes.push_back(
         {"background", true,
          shot.scene.background.canvas ? "canvas colour" : "sky and ground seen from the camera",
          t.ms(), ""});
     if (plan.underpaint) {
         t = PassTimer();
-        rep.underpaint_rays = paint_underpainting(shot, view, plan, rs, sun_rays, frame);
-        rep.passes.push_back({"underpaint", true,
-                              "flat palette colour where the camera sees a surface", t.ms(),
-                              std::to_string(rep.underpaint_rays) + " camera rays"});
+        rep.underpaint_rays = paint_underpainting(shot, view, plan, rs, sun_rays, strokes, frame);
+        rep.passes.push_back(
+            {"underpaint", true,
+             "flat palette colour where the camera sees a surface and the strokes leave gaps",
+             t.ms(), std::to_string(rep.underpaint_rays) + " camera rays"});
     }
     t = PassTimer();
-    rep.fragments = paint_strokes(shot, sprites, bins, plan, rs, frame);
-    rep.passes.push_back({"paint", true,
-                          "strokes front to back, tiles in parallel, each until it is covered",
-                          t.ms(), std::to_string(rep.fragments) + " fragments"});
+    composite_strokes(strokes, plan, frame);
+    rep.passes.push_back({"composite", true, "the strokes over what lies under them", t.ms(), ""});
     return frame;
 }
 

@@ -52,8 +52,28 @@ Color underpaint_color(const Shot& shot, const FrameView& view, const FramePlan&
     return finish_color(k, palette_lookup(*m.palette, l));
 }
 
+// Which cells some open pixel interpolates from (every cell when `all`).
+std::vector<uint8_t> needed_cells(const Underpainting& u, const StrokeLayer& strokes, bool all) {
+    std::vector<uint8_t> need(static_cast<size_t>(u.w) * u.h, all ? 1 : 0);
+    if (all) return need;
+    for (int y = 0; y < strokes.height; ++y) {
+        const float sy = std::clamp(static_cast<float>((y + 0.5) / u.fy - 0.5), 0.0f, u.h - 1.0f);
+        const int j0 = static_cast<int>(sy), j1 = std::min(j0 + 1, u.h - 1);
+        for (int x = 0; x < strokes.width; ++x) {
+            if (strokes.covered(static_cast<size_t>(y) * strokes.width + x)) continue;
+            const float sx =
+                std::clamp(static_cast<float>((x + 0.5) / u.fx - 0.5), 0.0f, u.w - 1.0f);
+            const int i0 = static_cast<int>(sx), i1 = std::min(i0 + 1, u.w - 1);
+            for (int j : {j0, j1})
+                for (int i : {i0, i1}) need[static_cast<size_t>(j) * u.w + i] = 1;
+        }
+    }
+    return need;
+}
+
 Underpainting trace_underpainting(const Shot& shot, const FrameView& view, const FramePlan& plan,
-                                  const RenderSettings& rs, const RayScene* sun_rays) {
+                                  const RenderSettings& rs, const RayScene* sun_rays,
+                                  const StrokeLayer& strokes, uint64_t& rays) {
     const Camera& cam = view.camera;
     Underpainting u;
     u.w = std::max(1, static_cast<int>(std::ceil(cam.width * rs.underpaint_scale)));
@@ -63,9 +83,12 @@ Underpainting trace_underpainting(const Shot& shot, const FrameView& view, const
     u.color.assign(static_cast<size_t>(u.w) * u.h, Color(0.0f));
     u.cover.assign(u.color.size(), 0.0f);
     u.depth.assign(u.color.size(), 0.0f);
+    const std::vector<uint8_t> need = needed_cells(u, strokes, plan.aovs);
+    for (uint8_t n : need) rays += n;
     tbb::parallel_for(0, u.h, [&](int j) {
         FlushDenormals ftz;
         for (int i = 0; i < u.w; ++i) {
+            if (!need[static_cast<size_t>(j) * u.w + i]) continue;
             const glm::dvec3 dir = ray_direction(cam, (i + 0.5) * u.fx, (j + 0.5) * u.fy);
             const RayHit h = shot.view_rays->intersect(cam.eye, glm::vec3(dir));
             if (!h.hit) continue;
@@ -82,14 +105,19 @@ Underpainting trace_underpainting(const Shot& shot, const FrameView& view, const
 }  // namespace
 
 uint64_t paint_underpainting(const Shot& shot, const FrameView& view, const FramePlan& plan,
-                             const RenderSettings& rs, const RayScene* sun_rays, Frame& frame) {
-    const Underpainting u = trace_underpainting(shot, view, plan, rs, sun_rays);
+                             const RenderSettings& rs, const RayScene* sun_rays,
+                             const StrokeLayer& strokes, Frame& frame) {
+    uint64_t rays = 0;
+    const Underpainting u = trace_underpainting(shot, view, plan, rs, sun_rays, strokes, rays);
     const int width = frame.width, uw = u.w, uh = u.h;
     tbb::parallel_for(0, frame.height, [&](int y) {
         const float sy = std::clamp(static_cast<float>((y + 0.5) / u.fy - 0.5), 0.0f, uh - 1.0f);
         const int j0 = static_cast<int>(sy), j1 = std::min(j0 + 1, uh - 1);
         const float wy = sy - j0;
         for (int x = 0; x < width; ++x) {
+            const size_t pi = static_cast<size_t>(y) * width + x;
+            const bool covered = strokes.covered(pi);
+            if (covered && !plan.aovs) continue;
             const float sx =
                 std::clamp(static_cast<float>((x + 0.5) / u.fx - 0.5), 0.0f, uw - 1.0f);
             const int i0 = static_cast<int>(sx), i1 = std::min(i0 + 1, uw - 1);
@@ -102,22 +130,24 @@ uint64_t paint_underpainting(const Shot& shot, const FrameView& view, const Fram
             const float cov =
                 lerp(lerp(u.cover[a], u.cover[b], wx), lerp(u.cover[c], u.cover[d], wx), wy);
             if (!(cov > 0.0f)) continue;
-            const Color col =
-                mix(mix(u.color[a], u.color[b], wx), mix(u.color[c], u.color[d], wx), wy);
-            float* px = &frame.rgba[4 * (static_cast<size_t>(y) * width + x)];
-            // Both premultiplied: the underpainting over the background.
-            px[0] = col.x + px[0] * (1.0f - cov);
-            px[1] = col.y + px[1] * (1.0f - cov);
-            px[2] = col.z + px[2] * (1.0f - cov);
-            if (plan.aovs && cov >= 0.5f) {
-                const size_t pi = static_cast<size_t>(y) * width + x;
+            if (!covered) {
+                const Color col =
+                    mix(mix(u.color[a], u.color[b], wx), mix(u.color[c], u.color[d], wx), wy);
+                float* px = &frame.rgba[4 * pi];
+                // Both premultiplied: the underpainting over the background.
+                px[0] = col.x + px[0] * (1.0f - cov);
+                px[1] = col.y + px[1] * (1.0f - cov);
+                px[2] = col.z + px[2] * (1.0f - cov);
+            }
+            // Its depth where no stroke over half opaque gave one.
+            if (plan.aovs && cov >= 0.5f && frame.object_id[pi] == 0.0f) {
                 const size_t nearest = static_cast<size_t>(wy < 0.5f ? j0 : j1) * uw +
                                        static_cast<size_t>(wx < 0.5f ? i0 : i1);
                 frame.depth[pi] = u.cover[nearest] > 0 ? u.depth[nearest] : u.depth[a];
             }
         }
     });
-    return static_cast<uint64_t>(uw) * uh;
+    return rays;
 }
 
 }  // namespace pleinair
