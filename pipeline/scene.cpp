@@ -532,64 +532,9 @@ void parse_groups(const json& doc, SceneDesc& s, std::vector<Problem>& problems,
               });
 }
 
-// A scene that names another in "extends" is that scene with its own keys merged over it (JSON
-// merge patch, RFC 7386: objects merge key by key, anything else, lists too, replaces, null
-// removes). The file is found beside the extending one; chains of up to 8 are followed.
-json resolve_extends(json doc, const std::string& source, int depth = 0) {
-    auto it = doc.find("extends");
-    if (it == doc.end()) return doc;
-    if (!it->is_string())
-        throw InputError(source, "/extends", "expected a scene file name, got " + describe(*it));
-    if (depth >= 8)
-        throw InputError(source, "/extends", "more than 8 scenes extend each other (a cycle?)");
-    fs::path base = fs::path(source).parent_path() / it->get<std::string>();
-    if (!fs::exists(base) && base.extension().empty()) base += ".json";
-    if (!fs::is_regular_file(base))
-        throw InputError(source, "/extends", "no scene file " + base.string());
-    std::vector<Problem> problems;
-    std::set<std::string> unused;
-    json base_doc = parse_document(read_input_file(base), base.string(), {}, problems, unused);
-    if (!problems.empty()) throw InputError(base.string(), problems);
-    base_doc = resolve_extends(std::move(base_doc), base.string(), depth + 1);
-    doc.erase(it);
-    base_doc.merge_patch(doc);
-    return base_doc;
-}
-
-}  // namespace
-
-SceneDesc parse_scene(const std::string& text, const std::string& source,
-                      const std::vector<std::string>& overrides) {
-    std::vector<Problem> problems;
-    std::set<std::string> overridden;
-    json doc = resolve_extends(parse_document(text, source, {}, problems, overridden), source);
-    apply_overrides(doc, overrides, problems, overridden);
-    SceneDesc s;
-    std::set<std::string> plain;
-    Reader reader(doc, problems, plain);
-    reader.check_ranges();
-    visit_scene(s, reader);
-    for (const char* key : {"families", "trees", "materials", "rocks", "groups"}) reader.claim(key);
-    reader.finish();
-    parse_tracks(doc, s, problems, plain);
-    parse_landscape(doc, source, s, problems, plain);
-
-    if (std::string why = make_camera(s.camera_params, s.camera); !why.empty())
-        problems.push_back({"/camera", why});
-    double sl = glm::length(s.sun_direction);
-    if (!(sl > 0) || !std::isfinite(sl))
-        problems.push_back({"/sun/direction", "must be a non-zero direction"});
-    else
-        s.sun_direction /= sl;
-    if (s.has_atmosphere && s.atmosphere.far_distance < s.atmosphere.near_distance)
-        problems.push_back(
-            {"/atmosphere/far", "must be >= near (" + format_number(s.atmosphere.near_distance) +
-                                    "), got " + format_number(s.atmosphere.far_distance)});
-    if (s.render.samples != 1 && s.render.samples != 4 && s.render.samples != 16)
-        problems.push_back(
-            {"/render/samples", "must be 1, 4 or 16, got " + std::to_string(s.render.samples)});
-
-    // Families: an object of name -> {preset, leaf_shader, bark_shader, leaf_palette?, ...}.
+// Families: an object of name -> {preset, leaf_shader, bark_shader, leaf_palette?, ...}.
+void parse_families(const json& doc, const std::string& source, SceneDesc& s,
+                    std::vector<Problem>& problems, std::set<std::string>& plain) {
     auto fam = doc.find("families");
     if (fam != doc.end() && !fam->is_object())
         problems.push_back({"/families", "expected an object of families, got " + describe(*fam)});
@@ -647,7 +592,11 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
             s.families.push_back(std::move(family));
         }
     }
+}
 
+// Trees placed by hand: a list of {family, seed, position, rotation, scale}.
+void parse_trees(const json& doc, SceneDesc& s, std::vector<Problem>& problems,
+                 std::set<std::string>& plain) {
     auto trees = doc.find("trees");
     if (trees != doc.end() && !trees->is_array())
         problems.push_back({"/trees", "expected a list of trees, got " + describe(*trees)});
@@ -687,12 +636,11 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
             s.trees.push_back(placed);
         }
     }
-    parse_groups(doc, s, problems, plain);
-    mark_overrides(problems, overridden);
-    if (!problems.empty()) throw InputError(source, problems);
+}
 
-    // With a terrain, an explicit tree's or rock's y is its height above the ground; groups
-    // are scattered over it after the explicit trees.
+// With a terrain, an explicit tree's or rock's y is its height above the ground; groups are
+// scattered over it after the explicit trees.
+void place_on_ground(SceneDesc& s) {
     s.explicit_trees = s.trees.size();
     if (s.terrain.present) {
         auto ground = [&](double x, double z) {
@@ -714,6 +662,72 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
             }
         }
     }
+}
+
+// A scene that names another in "extends" is that scene with its own keys merged over it (JSON
+// merge patch, RFC 7386: objects merge key by key, anything else, lists too, replaces, null
+// removes). The file is found beside the extending one; chains of up to 8 are followed.
+json resolve_extends(json doc, const std::string& source, int depth = 0) {
+    auto it = doc.find("extends");
+    if (it == doc.end()) return doc;
+    if (!it->is_string())
+        throw InputError(source, "/extends", "expected a scene file name, got " + describe(*it));
+    if (depth >= 8)
+        throw InputError(source, "/extends", "more than 8 scenes extend each other (a cycle?)");
+    fs::path base = fs::path(source).parent_path() / it->get<std::string>();
+    if (!fs::exists(base) && base.extension().empty()) base += ".json";
+    if (!fs::is_regular_file(base))
+        throw InputError(source, "/extends", "no scene file " + base.string());
+    std::vector<Problem> problems;
+    std::set<std::string> unused;
+    json base_doc = parse_document(read_input_file(base), base.string(), {}, problems, unused);
+    if (!problems.empty()) throw InputError(base.string(), problems);
+    base_doc = resolve_extends(std::move(base_doc), base.string(), depth + 1);
+    doc.erase(it);
+    base_doc.merge_patch(doc);
+    return base_doc;
+}
+
+}  // namespace
+
+SceneDesc parse_scene(const std::string& text, const std::string& source,
+                      const std::vector<std::string>& overrides) {
+    std::vector<Problem> problems;
+    std::set<std::string> overridden;
+    json doc = resolve_extends(parse_document(text, source, {}, problems, overridden), source);
+    apply_overrides(doc, overrides, problems, overridden);
+    SceneDesc s;
+    std::set<std::string> plain;
+    Reader reader(doc, problems, plain);
+    reader.check_ranges();
+    visit_scene(s, reader);
+    for (const char* key : {"families", "trees", "materials", "rocks", "groups"}) reader.claim(key);
+    reader.finish();
+    parse_tracks(doc, s, problems, plain);
+    parse_landscape(doc, source, s, problems, plain);
+
+    if (std::string why = make_camera(s.camera_params, s.camera); !why.empty())
+        problems.push_back({"/camera", why});
+    double sl = glm::length(s.sun_direction);
+    if (!(sl > 0) || !std::isfinite(sl))
+        problems.push_back({"/sun/direction", "must be a non-zero direction"});
+    else
+        s.sun_direction /= sl;
+    if (s.has_atmosphere && s.atmosphere.far_distance < s.atmosphere.near_distance)
+        problems.push_back(
+            {"/atmosphere/far", "must be >= near (" + format_number(s.atmosphere.near_distance) +
+                                    "), got " + format_number(s.atmosphere.far_distance)});
+    if (s.render.samples != 1 && s.render.samples != 4 && s.render.samples != 16)
+        problems.push_back(
+            {"/render/samples", "must be 1, 4 or 16, got " + std::to_string(s.render.samples)});
+
+    parse_families(doc, source, s, problems, plain);
+    parse_trees(doc, s, problems, plain);
+    parse_groups(doc, s, problems, plain);
+    mark_overrides(problems, overridden);
+    if (!problems.empty()) throw InputError(source, problems);
+
+    place_on_ground(s);
     return s;
 }
 

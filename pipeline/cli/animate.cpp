@@ -11,7 +11,6 @@
 #include <filesystem>
 #include <future>
 #include <memory>
-#include <optional>
 #include <stdexcept>
 
 #include "pipeline/cli/commands.h"
@@ -169,6 +168,68 @@ void check_outputs(const AnimateCommand& cmd, const FramePattern& pattern) {
     }
 }
 
+// Paints the frames of `todo` (those of `frames` not on disk), each written while the next is
+// painted (the write's PNG compression is serial); returns each frame's time from the previous
+// frame done to its own.
+std::vector<std::pair<double, int>> paint_frames(const Shot& shot, const std::vector<int>& frames,
+                                                 const std::vector<int>& todo,
+                                                 const FramePattern& pattern,
+                                                 const AnimateCommand& cmd,
+                                                 ProgressReport& progress, const std::string& what,
+                                                 double shot_ms) {
+    std::vector<std::pair<double, int>> times;  // ms between frames completed, frame
+    struct PendingWrite {
+        std::future<double> done;  // when the file was complete, on `clock`
+        int frame = 0;
+        std::string path;
+    };
+    std::unique_ptr<PendingWrite> pending;
+    const PassTimer clock;
+    double last_done = 0;
+    auto in_frame = [](int f, auto&& fn) {
+        try {
+            fn();
+        } catch (const InputError&) {
+            throw;
+        } catch (const std::exception& e) {
+            throw std::runtime_error("frame " + std::to_string(f) + ": " + e.what());
+        }
+    };
+    auto settle = [&] {
+        if (!pending) return;
+        double done = 0;
+        in_frame(pending->frame, [&] { done = pending->done.get(); });
+        times.push_back({done - last_done, pending->frame});
+        last_done = done;
+        progress.frame_done(pending->path, true, times.back().first);
+        pending.reset();
+    };
+    for (int f : frames) {
+        const std::string path = pattern.path(f);
+        if (!std::binary_search(todo.begin(), todo.end(), f)) {
+            progress.frame_done(path, false, 0);
+            continue;
+        }
+        const FrameSettings settings = scene_frame_settings(shot.scene, cmd.aovs);
+        if (!pending) last_done = clock.ms();
+        FrameReport report;
+        auto frame = std::make_shared<Frame>();
+        in_frame(f, [&] {
+            *frame = paint_frame(shot, view_at(shot.scene, frame_time(f, shot.scene.fps)), settings,
+                                 &report);
+        });
+        if (cmd.explain && times.empty() && !pending) print_explain(shot, report, what, shot_ms);
+        settle();
+        auto write = [path, frame, &clock] {
+            write_frame(path, *frame);
+            return clock.ms();
+        };
+        pending.reset(new PendingWrite{std::async(std::launch::async, write), f, path});
+    }
+    settle();
+    return times;
+}
+
 }  // namespace
 
 int run_animate(const AnimateCommand& cmd) {
@@ -210,59 +271,11 @@ int run_animate(const AnimateCommand& cmd) {
     const bool bar = cmd.progress == AnimateCommand::Progress::kBar ||
                      (cmd.progress == AnimateCommand::Progress::kAuto && isatty(STDOUT_FILENO));
     ProgressReport progress(frames.size(), bar);
-    std::vector<std::pair<double, int>> times;  // ms between frames completed, frame
-    // A frame is written while the next one is painted (the write's PNG compression is serial).
-    struct PendingWrite {
-        std::future<double> done;  // when the file was complete, on `clock`
-        int frame = 0;
-        std::string path;
-    };
-    std::optional<PendingWrite> pending;
-    const PassTimer clock;
-    double last_done = 0;
-    auto in_frame = [](int f, auto&& fn) {
-        try {
-            fn();
-        } catch (const InputError&) {
-            throw;
-        } catch (const std::exception& e) {
-            throw std::runtime_error("frame " + std::to_string(f) + ": " + e.what());
-        }
-    };
-    auto settle = [&] {
-        if (!pending) return;
-        double done = 0;
-        in_frame(pending->frame, [&] { done = pending->done.get(); });
-        times.push_back({done - last_done, pending->frame});
-        last_done = done;
-        progress.frame_done(pending->path, true, times.back().first);
-        pending.reset();
-    };
-    for (int f : frames) {
-        const std::string path = pattern.path(f);
-        if (!std::binary_search(todo.begin(), todo.end(), f)) {
-            progress.frame_done(path, false, 0);
-            continue;
-        }
-        const Shot& s = *shot;
-        const FrameSettings settings = scene_frame_settings(s.scene, cmd.aovs);
-        if (!pending) last_done = clock.ms();
-        FrameReport report;
-        auto frame = std::make_shared<Frame>();
-        in_frame(f, [&] {
-            *frame =
-                paint_frame(s, view_at(s.scene, frame_time(f, s.scene.fps)), settings, &report);
-        });
-        if (cmd.explain && times.empty() && !pending)
-            print_explain(s, report, file.string(), shot_ms);
-        settle();
-        auto write = [path, frame, &clock] {
-            write_frame(path, *frame);
-            return clock.ms();
-        };
-        pending = PendingWrite{std::async(std::launch::async, write), f, path};
-    }
-    settle();
+    std::vector<std::pair<double, int>> times;
+    if (shot)
+        times = paint_frames(*shot, frames, todo, pattern, cmd, progress, file.string(), shot_ms);
+    else
+        for (int f : frames) progress.frame_done(pattern.path(f), false, 0);
     progress.finish();
     if (!cmd.video.empty()) {
         encode_video(cmd.video, pattern, frames.front(), frames.size(), fps);
