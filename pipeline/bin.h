@@ -1,5 +1,6 @@
 // The depth-order stage of a frame: sprites sorted back to front and binned into screen tiles,
-// each tile listing the sprites that touch it in compositing order.
+// each tile listing the sprites that touch it back to front (the compositor walks it nearest
+// first).
 #pragma once
 
 #include <cstdint>

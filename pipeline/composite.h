@@ -1,6 +1,6 @@
-// The compositing stage of a frame: the background, the underpainting under the strokes, then
-// the sprites composited front to back under one another, tile by tile in parallel, each tile
-// until the strokes already painted cover it.
+// The compositing stage of a frame: the sprites composited nearest first, tile by tile in
+// parallel, each pixel until the strokes already painted cover it; then the background and the
+// underpainting where light still gets through; then the strokes over them.
 #pragma once
 
 #include <cstdint>
@@ -50,8 +50,8 @@ uint64_t paint_underpainting(const Shot& shot, const FrameView& view, const Fram
                              const RenderSettings& settings, const RayScene* sun_rays,
                              const StrokeLayer& strokes, Frame& frame);
 
-// The strokes over what the frame holds beneath them: the back-to-front "over" of everything,
-// to within the cutoff.
+// The strokes over what the frame holds beneath them: equal to compositing every stroke, the
+// underpainting and the background back to front with "over", to within the cutoff.
 void composite_strokes(const StrokeLayer& strokes, const FramePlan& plan, Frame& frame);
 
 }  // namespace pleinair

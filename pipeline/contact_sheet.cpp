@@ -84,14 +84,7 @@ Frame paint_contact_sheet(const Family& family, const std::vector<Tree>& trees,
         BuiltTree b;
         b.tree = trees[i];
         b.position = b.tree.origin;
-        if (bark) {
-            BarkOptions bo;
-            bo.stroke_width =
-                static_cast<float>(family.bark_shader.sprite_size * family.params.unit);
-            bo.stroke_length = bo.stroke_width * family.bark_shader.stroke_aspect;
-            bo.coverage = o.build.bark_coverage;
-            b.bark = emit_bark(b.tree, bo, b.tree.seed);
-        }
+        if (bark) b.bark = family_bark(family, b.tree, o.build.bark_coverage, b.tree.seed);
         std::vector<glm::vec3> pts = b.tree.render.positions;
         pts.insert(pts.end(), b.tree.leaves.position.begin(), b.tree.leaves.position.end());
         Bounds bb = bounds_of(pts);

@@ -25,9 +25,7 @@ FramePlan plan_frame(const Shot& shot, const FrameSettings& settings) {
         }
     plan.bark = shot.plan.bark;
     add("bark", plan.bark,
-        plan.bark ? "trunks and branches are painted as strokes"
-                  : (scene.build.bark_coverage > 0 ? "bark strokes turned off"
-                                                   : "render/bark_coverage is 0"));
+        plan.bark ? "trunks and branches are painted as strokes" : "render/bark_coverage is 0");
     plan.tint = tint;
     add("tint", tint,
         tint ? "a shader has unique_tint_amt > 0" : "unique_tint_amt is 0 in every shader");

@@ -21,7 +21,8 @@ struct FrameSettings {
     bool bare_blend = false;
 };
 
-// What the camera track and the sun's keys give at the frame's time.
+// What the camera track and the sun's keys give at the frame's time. The sun is the view's only
+// when the scene keys it; a still sun is the shot's (its light and casters were built for it).
 struct FrameView {
     Camera camera;
     glm::dvec3 sun_direction{0, 1, 0};  // towards the sun, unit

@@ -1,7 +1,6 @@
 // parse_frame_range and parse_frame_pattern.
 #include "pipeline/frame_range.h"
 
-#include <cstdio>
 #include <regex>
 
 #include "pipeline/error.h"
@@ -30,8 +29,9 @@ FrameRange parse_frame_range(const std::string& text, const std::string& option)
 }
 
 std::string FramePattern::path(int frame) const {
-    char digits[32];
-    std::snprintf(digits, sizeof digits, "%0*d", width, frame);
+    std::string digits = std::to_string(frame);
+    if (static_cast<int>(digits.size()) < width)
+        digits.insert(0, static_cast<size_t>(width) - digits.size(), '0');
     return head + digits + tail;
 }
 
@@ -50,10 +50,15 @@ FramePattern parse_frame_pattern(const std::string& pattern, const std::string& 
     FramePattern p;
     p.head = pattern.substr(0, static_cast<size_t>(m.position(0)));
     p.tail = pattern.substr(static_cast<size_t>(m.position(0) + m.length(0)));
-    if (m.str(0)[0] == '#')
-        p.width = static_cast<int>(m.length(0));
-    else
-        p.width = m[1].length() ? std::min(std::stoi(m[1]), 12) : 0;
+    // Frame numbers have at most 9 digits (--frames): padding wider than 12 is a typo.
+    const size_t width = m.str(0)[0] == '#'  ? static_cast<size_t>(m.length(0))
+                         : m[1].length() > 2 ? 99
+                         : m[1].length()     ? std::stoul(m[1])
+                                             : 0;
+    if (width > 12)
+        throw InputError(option, "",
+                         "expected at most 12 digits of frame number, got \"" + pattern + "\"");
+    p.width = static_cast<int>(width);
     if (p.tail.find('/') != std::string::npos)
         throw InputError(
             option, "",

@@ -24,7 +24,8 @@ struct FramePattern {
     std::string path(int frame) const;
 };
 
-// Throws InputError naming `option` when the pattern has no frame number, or more than one.
+// Throws InputError naming `option` when the pattern has no frame number, more than one, one
+// padded to over 12 digits, or one in a folder's name.
 FramePattern parse_frame_pattern(const std::string& pattern, const std::string& option = "-o");
 
 }  // namespace pleinair

@@ -229,6 +229,19 @@ void write_frame(const fs::path& path, const Frame& f) {
     write_file_atomic(path, memory.bytes());
 }
 
+bool image_has_size(const fs::path& path, int width, int height) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) return false;
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in) {
+        OIIO::geterror();  // clear OpenImageIO's error for this thread
+        return false;
+    }
+    const bool same = in->spec().width == width && in->spec().height == height;
+    in->close();
+    return same;
+}
+
 ImageError compare_frames(const Frame& a, const Frame& ref) {
     if (a.width != ref.width || a.height != ref.height)
         throw std::runtime_error("compare_frames: sizes differ");

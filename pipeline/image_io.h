@@ -21,6 +21,10 @@ bool is_image_path(const std::filesystem::path& path);
 // either way and an earlier file of the same name is untouched.
 void write_frame(const std::filesystem::path& path, const Frame& frame);
 
+// Whether `path` is an image OpenImageIO can open whose size is width x height (a frame a
+// resumed run keeps).
+bool image_has_size(const std::filesystem::path& path, int width, int height);
+
 // 8-bit sRGB RGB bytes of the frame (what a PNG holds), for tests and contact sheets.
 std::vector<uint8_t> frame_srgb8(const Frame& frame);
 

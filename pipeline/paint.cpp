@@ -29,18 +29,28 @@ FrameView view_at(const SceneDesc& scene, double t) {
     return v;
 }
 
+TimeSpan animation_span(const SceneDesc& scene) {
+    const auto& cam = scene.camera_track.keys;
+    if (!cam.empty()) return {cam.front().time, cam.back().time};
+    if (!scene.sun_track.empty())
+        return {scene.sun_track.front().time, scene.sun_track.back().time};
+    return {};
+}
+
 FrameRange animation_frames(const SceneDesc& scene) {
-    CameraTrack times = scene.camera_track;
-    if (times.keys.empty())
-        for (const SunKey& k : scene.sun_track) times.keys.push_back({k.time});
-    if (times.keys.empty()) return {1, 1, 1};
+    if (!scene.animated()) return {1, 1, 1};
+    const TimeSpan span = animation_span(scene);
+    CameraTrack times;  // the frame counting only reads the keys' times
+    times.keys = {CameraKey{span.first}, CameraKey{span.last}};
     return {track_first_frame(times, scene.fps), track_last_frame(times, scene.fps), 1};
 }
 
-Frame paint_frame(const Shot& shot, const FrameView& view, const FrameSettings& settings,
+Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSettings& settings,
                   FrameReport* report) {
     FrameReport local;
     FrameReport& rep = report ? *report : local;
+    FrameView view = view_in;
+    if (shot.scene.sun_track.empty()) view.sun_direction = shot.scene.sun_direction;
     const Camera& cam = view.camera;
     const RenderSettings& rs = settings.render;
     const FramePlan plan = plan_frame(shot, settings);
@@ -79,7 +89,7 @@ Frame paint_frame(const Shot& shot, const FrameView& view, const FrameSettings& 
 
     t = PassTimer();
     const std::vector<uint32_t> order = depth_order(sprites.sprites);
-    rep.passes.push_back({"sort", true, "back-to-front compositing", t.ms(), ""});
+    rep.passes.push_back({"sort", true, "depth order, ties by sprite", t.ms(), ""});
     t = PassTimer();
     const TileBins bins = bin_sprites(sprites.sprites, order, cam.width, cam.height);
     rep.passes.push_back(

@@ -1,6 +1,7 @@
 // A frame as a pure function of (shot, view, settings): paint_frame calls the frame's stages in
-// order (plan, sprites, depth order and tiles, background, underpainting, strokes); the same
-// inputs give the same bytes on any number of threads, in any frame order.
+// order (plan, sprites, depth order and tiles, strokes nearest first, then the background and
+// underpainting where the strokes leave light through, composite); the same inputs give the
+// same bytes on any number of threads, in any frame order.
 #pragma once
 
 #include <cstdint>
@@ -34,8 +35,15 @@ FrameView still_view(const SceneDesc& scene);
 // degenerate there (its look-at passing through its position).
 FrameView view_at(const SceneDesc& scene, double t);
 
-// The frames of an animated scene: those whose times lie within its camera track, or within its
-// sun track when it has no camera track; frame 1 alone for a still.
+// The seconds an animated scene's tracks cover: its camera track's first and last keys', or its
+// sun track's when it has no camera track; {0, 0} for a still.
+struct TimeSpan {
+    double first = 0, last = 0;
+};
+TimeSpan animation_span(const SceneDesc& scene);
+
+// The frames of an animated scene: those whose times lie within animation_span; frame 1 alone
+// for a still.
 FrameRange animation_frames(const SceneDesc& scene);
 
 Frame paint_frame(const Shot& shot, const FrameView& view, const FrameSettings& settings,

@@ -666,7 +666,7 @@ void place_on_ground(SceneDesc& s) {
 
 // A scene that names another in "extends" is that scene with its own keys merged over it (JSON
 // merge patch, RFC 7386: objects merge key by key, anything else, lists too, replaces, null
-// removes). The file is found beside the extending one; chains of up to 8 are followed.
+// removes). The file must lie beside the extending one; chains of up to 8 are followed.
 json resolve_extends(json doc, const std::string& source, int depth = 0) {
     auto it = doc.find("extends");
     if (it == doc.end()) return doc;
@@ -674,7 +674,14 @@ json resolve_extends(json doc, const std::string& source, int depth = 0) {
         throw InputError(source, "/extends", "expected a scene file name, got " + describe(*it));
     if (depth >= 8)
         throw InputError(source, "/extends", "more than 8 scenes extend each other (a cycle?)");
-    fs::path base = fs::path(source).parent_path() / it->get<std::string>();
+    const std::string name = it->get<std::string>();
+    // Beside this file: files the base names (shaders, palettes, presets) are looked up from
+    // the extending file's folder, which is then the base's too.
+    if (name.empty() || name.find('/') != std::string::npos || name == "." || name == "..")
+        throw InputError(
+            source, "/extends",
+            "expected the name of a scene file in the same folder, got \"" + name + "\"");
+    fs::path base = fs::path(source).parent_path() / name;
     if (!fs::exists(base) && base.extension().empty()) base += ".json";
     if (!fs::is_regular_file(base))
         throw InputError(source, "/extends", "no scene file " + base.string());

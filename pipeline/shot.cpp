@@ -19,7 +19,7 @@ glm::dvec3 rotate_y(const glm::dvec3& v, double c, double s) {
 
 ShotPlan plan_shot(const SceneDesc& scene, const ShotOptions& options) {
     ShotPlan plan;
-    plan.bark = options.bark && scene.build.bark_coverage > 0;
+    plan.bark = scene.build.bark_coverage > 0;
     const bool meshes = scene.terrain.present || !scene.rocks.empty();
     plan.shadows = scene.sun_casts_shadows && (meshes || !scene.trees.empty());
     plan.sun_moves = plan.shadows && !scene.sun_track.empty();
@@ -95,7 +95,7 @@ void leaf_casters(const SceneDesc& scene, const BuiltTree& b, const glm::vec3& s
     const TreePlacement pl = placement(b);
     const StrokeShaderParams& p = scene.families[b.family].leaf_shader;
     const LeafParticles& L = b.tree.leaves;
-    const double w = p.sprite_size * scene.families[b.family].params.unit * b.scale;
+    const double w = tree_stroke_width(scene.families[b.family], p, b.scale);
     // A frame perpendicular to the sun; each card turned by its stroke's angle jitter.
     const glm::vec3 ref = std::abs(sun.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
     const glm::vec3 a0 = glm::normalize(glm::cross(ref, sun)), b0 = glm::cross(sun, a0);
@@ -115,6 +115,18 @@ void leaf_casters(const SceneDesc& scene, const BuiltTree& b, const glm::vec3& s
     }
 }
 
+double tree_stroke_width(const Family& family, const StrokeShaderParams& shader, double scale) {
+    return shader.sprite_size * family.params.unit * scale;
+}
+
+BarkParticles family_bark(const Family& family, const Tree& tree, float coverage, uint64_t seed) {
+    BarkOptions bo;
+    bo.stroke_width = static_cast<float>(tree_stroke_width(family, family.bark_shader, 1.0));
+    bo.stroke_length = bo.stroke_width * family.bark_shader.stroke_aspect;
+    bo.coverage = coverage;
+    return emit_bark(tree, bo, seed);
+}
+
 std::vector<BuiltTree> build_trees(const SceneDesc& scene, bool bark) {
     std::vector<BuiltTree> out(scene.trees.size());
     tbb::parallel_for(size_t{0}, scene.trees.size(), [&](size_t i) {
@@ -132,14 +144,7 @@ std::vector<BuiltTree> build_trees(const SceneDesc& scene, bool bark) {
         b.position.y -= b.tree.planting_depth * t.scale;
         b.rotation = t.rotation;
         b.scale = t.scale;
-        if (bark) {
-            BarkOptions bo;
-            const StrokeShaderParams& p = f.bark_shader;
-            bo.stroke_width = static_cast<float>(p.sprite_size * f.params.unit);
-            bo.stroke_length = bo.stroke_width * p.stroke_aspect;
-            bo.coverage = scene.build.bark_coverage;
-            b.bark = emit_bark(b.tree, bo, t.seed);
-        }
+        if (bark) b.bark = family_bark(f, b.tree, scene.build.bark_coverage, t.seed);
     });
     return out;
 }

@@ -36,8 +36,15 @@ struct TreePlacement {
 };
 TreePlacement placement(const BuiltTree& tree);
 
-// Generates every tree of the scene (in parallel; the result does not depend on threads).
-// `bark` is false when no bark is painted.
+// A stroke's world width on a tree of `family`: the shader's sprite_size in the tree's units,
+// times the tree's scale. Leaves, bark strokes and the leaves' shadow casters agree through it.
+double tree_stroke_width(const Family& family, const StrokeShaderParams& shader, double scale);
+
+// The bark strokes of a tree of `family` (its bark shader's size and aspect) at a coverage.
+BarkParticles family_bark(const Family& family, const Tree& tree, float coverage, uint64_t seed);
+
+// Generates every tree of the scene (in parallel; the result does not depend on threads), with
+// bark strokes when `bark`.
 std::vector<BuiltTree> build_trees(const SceneDesc& scene, bool bark = true);
 
 // The tree's leaf strokes as shadow casters: cards facing the sun, sized and turned like the
@@ -49,7 +56,6 @@ void leaf_casters(const SceneDesc& scene, const BuiltTree& tree, const glm::vec3
                   StrokeCaster* out);
 
 struct ShotOptions {
-    bool bark = true;  // bark strokes (also off when /render/bark_coverage is 0)
     // Each particle's light from a still sun, traced once for every frame (animations); off,
     // frames trace it for the particles they show (a still traces fewer rays that way). The
     // light is the same either way.
@@ -58,7 +64,7 @@ struct ShotOptions {
 
 // What the shot holds, decided from the scene alone.
 struct ShotPlan {
-    bool bark = false;        // bark strokes grown and painted
+    bool bark = false;        // bark strokes grown and painted (render/bark_coverage > 0)
     bool shadows = false;     // the sun casts shadows and something is there to cast them
     bool sun_moves = false;   // a keyed sun: its scene and the light are traced per frame
     bool underpaint = false;  // a visible mesh (terrain, water, rocks): the camera's ray scene

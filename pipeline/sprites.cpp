@@ -160,7 +160,7 @@ SpriteInput sprite_input(const Shot& shot, size_t item, SpriteKind kind, size_t 
     const bool bark = kind == SpriteKind::kBark;
     mat = bark ? shot.materials.bark(b.family) : shot.materials.leaf(b.family);
     const StrokeShaderParams& p = bark ? fam.bark_shader : fam.leaf_shader;
-    in.width = p.sprite_size * fam.params.unit * b.scale;
+    in.width = tree_stroke_width(fam, p, b.scale);
     in.length = in.width * p.stroke_aspect;
     if (bark) {
         in.normal = o.normal;

@@ -19,6 +19,24 @@ struct Underpainting {
     double fx = 1, fy = 1;  // image pixels per cell
     std::vector<Color> color;
     std::vector<float> cover, depth;
+
+    // The cells a pixel interpolates from, and its weights: one rule for what is traced and
+    // what is read back.
+    struct Lerp {
+        int i0, i1, j0, j1;
+        float wx, wy;
+    };
+    float cell_y(int y) const {
+        return std::clamp(static_cast<float>((y + 0.5) / fy - 0.5), 0.0f, h - 1.0f);
+    }
+    Lerp at(int x, float sy) const {
+        const float sx = std::clamp(static_cast<float>((x + 0.5) / fx - 0.5), 0.0f, w - 1.0f);
+        Lerp l;
+        l.j0 = static_cast<int>(sy), l.j1 = std::min(l.j0 + 1, h - 1), l.wy = sy - l.j0;
+        l.i0 = static_cast<int>(sx), l.i1 = std::min(l.i0 + 1, w - 1), l.wx = sx - l.i0;
+        return l;
+    }
+    size_t cell(int i, int j) const { return static_cast<size_t>(j) * w + i; }
 };
 
 // The colour under the strokes where a camera ray hits a surface.
@@ -57,15 +75,12 @@ std::vector<uint8_t> needed_cells(const Underpainting& u, const StrokeLayer& str
     std::vector<uint8_t> need(static_cast<size_t>(u.w) * u.h, all ? 1 : 0);
     if (all) return need;
     for (int y = 0; y < strokes.height; ++y) {
-        const float sy = std::clamp(static_cast<float>((y + 0.5) / u.fy - 0.5), 0.0f, u.h - 1.0f);
-        const int j0 = static_cast<int>(sy), j1 = std::min(j0 + 1, u.h - 1);
+        const float sy = u.cell_y(y);
         for (int x = 0; x < strokes.width; ++x) {
             if (strokes.covered(static_cast<size_t>(y) * strokes.width + x)) continue;
-            const float sx =
-                std::clamp(static_cast<float>((x + 0.5) / u.fx - 0.5), 0.0f, u.w - 1.0f);
-            const int i0 = static_cast<int>(sx), i1 = std::min(i0 + 1, u.w - 1);
-            for (int j : {j0, j1})
-                for (int i : {i0, i1}) need[static_cast<size_t>(j) * u.w + i] = 1;
+            const Underpainting::Lerp l = u.at(x, sy);
+            for (int j : {l.j0, l.j1})
+                for (int i : {l.i0, l.i1}) need[u.cell(i, j)] = 1;
         }
     }
     return need;
@@ -109,23 +124,17 @@ uint64_t paint_underpainting(const Shot& shot, const FrameView& view, const Fram
                              const StrokeLayer& strokes, Frame& frame) {
     uint64_t rays = 0;
     const Underpainting u = trace_underpainting(shot, view, plan, rs, sun_rays, strokes, rays);
-    const int width = frame.width, uw = u.w, uh = u.h;
+    const int width = frame.width;
     tbb::parallel_for(0, frame.height, [&](int y) {
-        const float sy = std::clamp(static_cast<float>((y + 0.5) / u.fy - 0.5), 0.0f, uh - 1.0f);
-        const int j0 = static_cast<int>(sy), j1 = std::min(j0 + 1, uh - 1);
-        const float wy = sy - j0;
+        const float sy = u.cell_y(y);
         for (int x = 0; x < width; ++x) {
             const size_t pi = static_cast<size_t>(y) * width + x;
             const bool covered = strokes.covered(pi);
             if (covered && !plan.aovs) continue;
-            const float sx =
-                std::clamp(static_cast<float>((x + 0.5) / u.fx - 0.5), 0.0f, uw - 1.0f);
-            const int i0 = static_cast<int>(sx), i1 = std::min(i0 + 1, uw - 1);
-            const float wx = sx - i0;
-            const size_t a = static_cast<size_t>(j0) * uw + i0,
-                         b = static_cast<size_t>(j0) * uw + i1,
-                         c = static_cast<size_t>(j1) * uw + i0,
-                         d = static_cast<size_t>(j1) * uw + i1;
+            const Underpainting::Lerp l = u.at(x, sy);
+            const float wx = l.wx, wy = l.wy;
+            const size_t a = u.cell(l.i0, l.j0), b = u.cell(l.i1, l.j0), c = u.cell(l.i0, l.j1),
+                         d = u.cell(l.i1, l.j1);
             auto lerp = [](float p, float q, float t) { return p + (q - p) * t; };
             const float cov =
                 lerp(lerp(u.cover[a], u.cover[b], wx), lerp(u.cover[c], u.cover[d], wx), wy);
@@ -141,8 +150,7 @@ uint64_t paint_underpainting(const Shot& shot, const FrameView& view, const Fram
             }
             // Its depth where no stroke over half opaque gave one.
             if (plan.aovs && cov >= 0.5f && frame.object_id[pi] == 0.0f) {
-                const size_t nearest = static_cast<size_t>(wy < 0.5f ? j0 : j1) * uw +
-                                       static_cast<size_t>(wx < 0.5f ? i0 : i1);
+                const size_t nearest = u.cell(wx < 0.5f ? l.i0 : l.i1, wy < 0.5f ? l.j0 : l.j1);
                 frame.depth[pi] = u.cover[nearest] > 0 ? u.depth[nearest] : u.depth[a];
             }
         }

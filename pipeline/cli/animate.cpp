@@ -3,9 +3,11 @@
 // and an optional video encoded by ffmpeg.
 #include <spawn.h>
 #include <sys/wait.h>
+#include <tbb/global_control.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -141,11 +143,22 @@ void encode_video(const std::string& video, const FramePattern& pattern, int fir
         throw std::runtime_error("cannot run ffmpeg for " + video + ": " + std::strerror(e) +
                                  " (install the Debian package ffmpeg; make does)");
     int status = 0;
-    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    pid_t waited;
+    while ((waited = waitpid(pid, &status, 0)) < 0 && errno == EINTR) {
     }
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    if (waited != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
         throw std::runtime_error("ffmpeg failed to encode " + video);
     out.commit();
+}
+
+// A track whose camera degenerates between its keys (its look-at passing through its position)
+// is bad input, found before any frame is painted.
+void check_views(const SceneDesc& scene, const std::vector<int>& frames, const std::string& file) {
+    for (int f : frames) try {
+            view_at(scene, frame_time(f, scene.fps));
+        } catch (const std::runtime_error& e) {
+            throw InputError(file, "/camera/track", "frame " + std::to_string(f) + ": " + e.what());
+        }
 }
 
 void check_outputs(const AnimateCommand& cmd, const FramePattern& pattern) {
@@ -220,11 +233,15 @@ std::vector<std::pair<double, int>> paint_frames(const Shot& shot, const std::ve
         });
         if (cmd.explain && times.empty() && !pending) print_explain(shot, report, what, shot_ms);
         settle();
-        auto write = [path, frame, &clock] {
+        auto write = [path, frame, clock] {
             write_frame(path, *frame);
             return clock.ms();
         };
-        pending.reset(new PendingWrite{std::async(std::launch::async, write), f, path});
+        // With one thread asked for, the write runs in turn (deferred to its settle).
+        const bool overlap =
+            tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) > 1;
+        pending.reset(new PendingWrite{
+            std::async(overlap ? std::launch::async : std::launch::deferred, write), f, path});
     }
     settle();
     return times;
@@ -243,6 +260,7 @@ int run_animate(const AnimateCommand& cmd) {
                          "the scene has no camera track and no sun track: paint it with "
                          "`pleinair render`");
     const std::vector<int> frames = frames_to_paint(scene, cmd.frames);
+    check_views(scene, frames, file.string());
     if (!cmd.video.empty() && frames.size() > 1 && frames[1] - frames[0] != 1)
         throw InputError("--video", "", "a video needs every frame of its range (no xSTEP)");
     if (cmd.preview) {
@@ -255,9 +273,13 @@ int run_animate(const AnimateCommand& cmd) {
     if (!dir.empty()) fs::create_directories(dir);
     if (cmd.resume) clear_partials(dir.empty() ? fs::path(".") : dir);
 
+    // A frame on disk is complete (written whole, then renamed); one of another size (a
+    // --preview run's) is not this run's.
     std::vector<int> todo;
     for (int f : frames)
-        if (!cmd.resume || !fs::exists(pattern.path(f))) todo.push_back(f);
+        if (!cmd.resume ||
+            !image_has_size(pattern.path(f), scene.camera_params.width, scene.camera_params.height))
+            todo.push_back(f);
     const double fps = scene.fps;
     // Every frame of an animation takes the still sun's light from the shot, so a chunk and a
     // whole run share one way of computing it. Nothing to paint (a resumed shot that is

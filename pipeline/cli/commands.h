@@ -51,7 +51,7 @@ struct AnimateCommand {
     std::string video;     // encode the frames into this .mp4 with ffmpeg
     bool preview = false;  // half resolution
     bool aovs = false;
-    bool explain = false;  // the shot's passes, then each frame's total
+    bool explain = false;  // the shot's passes, the first frame's plan and passes
     std::vector<std::string> set;
     // Progress: a bar on a terminal, else the lines render farms parse. Tests force either.
     enum class Progress { kAuto, kBar, kLog } progress = Progress::kAuto;

@@ -23,6 +23,12 @@ void print_pass(const PassReport& p) {
         std::printf("    %-18s   skipped     %s\n", p.name.c_str(), p.why.c_str());
 }
 
+std::string format_seconds(double t) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", t);
+    return buf;
+}
+
 // The time of the frame to paint: --time, --frame, or an animated scene's first frame.
 double frame_time_of(const RenderCommand& cmd, const SceneDesc& scene, const std::string& file) {
     if (cmd.time && cmd.frame) throw InputError("--time", "", "give --time or --frame, not both");
@@ -39,15 +45,12 @@ double frame_time_of(const RenderCommand& cmd, const SceneDesc& scene, const std
         return frame_time(*cmd.frame, scene.fps);
     }
     if (cmd.time) {
-        const double hi = scene.camera_track.keys.empty() ? scene.sun_track.back().time
-                                                          : scene.camera_track.keys.back().time;
-        const double first_key = scene.camera_track.keys.empty()
-                                     ? scene.sun_track.front().time
-                                     : scene.camera_track.keys.front().time;
-        if (!(*cmd.time >= first_key && *cmd.time <= hi))
+        const TimeSpan span = animation_span(scene);
+        if (!(*cmd.time >= span.first && *cmd.time <= span.last))
             throw InputError("--time", "",
-                             "must lie within the track, [" + std::to_string(first_key) + ", " +
-                                 std::to_string(hi) + "] s, got " + std::to_string(*cmd.time));
+                             "must lie within the track, [" + format_seconds(span.first) + ", " +
+                                 format_seconds(span.last) + "] s, got " +
+                                 format_seconds(*cmd.time));
         return *cmd.time;
     }
     return frame_time(frames.first, scene.fps);
@@ -85,14 +88,20 @@ int run_render(const RenderCommand& cmd) {
     fs::path file = resolve_preset("scenes", cmd.scene, "SCENE");
     SceneDesc scene = load_scene(file, cmd.set);
     const double t = frame_time_of(cmd, scene, file.string());
+    FrameView view;
+    try {
+        view = view_at(scene, t);
+    } catch (const std::runtime_error& e) {
+        throw InputError(file.string(), "/camera/track", e.what());
+    }
     // A still traces the sun's light for the particles it shows, not for every particle.
     const Shot shot = build_shot(std::move(scene), ShotOptions{});
     const double shot_ms = total.ms();
 
     FrameReport report;
     PassTimer frame_timer;
-    const Frame frame = paint_frame(shot, view_at(shot.scene, t),
-                                    scene_frame_settings(shot.scene, cmd.aovs), &report);
+    const Frame frame =
+        paint_frame(shot, view, scene_frame_settings(shot.scene, cmd.aovs), &report);
     const double frame_ms = frame_timer.ms();
 
     PassTimer out_timer;

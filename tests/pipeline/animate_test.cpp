@@ -21,11 +21,12 @@ using test::read_file;
 using test::run_pleinair;
 
 // A small landscape under a shadow-casting sun, the camera walking past two trees.
-std::string walk_scene(const std::string& track, int width = 96, int height = 64) {
+std::string walk_scene(const std::string& track, int width = 96, int height = 64,
+                       const std::string& camera = "") {
     return R"({"fps": 12,
-        "camera": {"width": )" +
-           std::to_string(width) + R"(, "height": )" + std::to_string(height) +
-           R"(, "fov": 50, "track": )" + track + R"(},
+        "camera": {)" +
+           camera + R"("width": )" + std::to_string(width) + R"(, "height": )" +
+           std::to_string(height) + R"(, "fov": 50, "track": )" + track + R"(},
         "sun": {"direction": [-0.5, 0.6, 0.4], "casts_shadows": true},
         "atmosphere": {"near": 10, "far": 150},
         "materials": {"grass": {"shader": "grass"}},
@@ -191,12 +192,12 @@ TEST_F(Animate, AKilledRunResumesToTheSameBytes) {
     const size_t before = complete();
     ASSERT_GE(before, 2u);
     ASSERT_LT(before, 7u);
-    // A temporary a killed writer left (the kill may or may not have caught one mid-write).
-    std::ofstream(dir_ / "killed" / ".f_07.png.partial-999999999") << "half a frame";
+    // A temporary a killed writer of this machine left (the kill may or may not have caught one
+    // mid-write): its PID is past any Linux pid_max.
+    const std::string host = partial_host(partial_path("x").filename().string());
+    std::ofstream(dir_ / "killed" / (".f_07.png.partial-999999999@" + host)) << "half a frame";
 
-    ASSERT_EQ(animate(s, "clean", "--threads 2 --set /camera/width=320 --set /camera/height=200")
-                  .exit_code,
-              0);
+    ASSERT_EQ(animate(s, "clean", "--threads 2").exit_code, 0);
     for (int f = 1; f <= 7; ++f) {
         char name[16];
         std::snprintf(name, sizeof name, "f_%02d.png", f);
@@ -236,6 +237,53 @@ TEST_F(Animate, VideoHoldsEveryFrame) {
         (dir_ / "walk.mp4").string() + "' > '" + probe + "'";
     ASSERT_EQ(std::system(cmd.c_str()), 0) << "ffprobe (Debian package ffmpeg) must be installed";
     EXPECT_EQ(read_file(probe), "96,64,yuv420p,7\n");
+}
+
+// A frame that cannot be written (its name is taken by a folder) fails the run with exit 1,
+// naming the frame; the frames before it are whole and no temporary is left.
+TEST_F(Animate, AFailedFrameIsNamedAndTheEarlierOnesStay) {
+    const fs::path s = scene(walk_scene(kWalk));
+    fs::create_directories(dir_ / "fail" / "f_03.png" / "inside");
+    auto r = animate(s, "fail", "--frames 1-5");
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("frame 3: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("f_03.png"), std::string::npos) << r.err;
+    ASSERT_EQ(animate(s, "good", "--frames 1-2").exit_code, 0);
+    EXPECT_EQ(frame("fail", 1), frame("good", 1));
+    EXPECT_EQ(frame("fail", 2), frame("good", 2));
+    for (const auto& e : fs::directory_iterator(dir_ / "fail"))
+        EXPECT_FALSE(is_partial_name(e.path().filename().string())) << e.path();
+}
+
+// A camera that looks at its own position between two good keys: bad input, before any frame.
+TEST_F(Animate, ATrackThatDegeneratesBetweenKeysIsBadInput) {
+    // Linear: position and look-at meet at t = 1/4, frame 4 at 12 fps.
+    const fs::path s = scene(walk_scene(R"([
+        {"time": 0, "position": [0, 2, 30], "look_at": [0, 2, 20]},
+        {"time": 1, "position": [0, 2, 10], "look_at": [0, 2, 40]}])",
+                                        96, 64, R"("interpolation": "linear", )"));
+    auto r = animate(s, "bad", "");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("/camera/track: frame 4"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "bad"));
+    auto still =
+        run_pleinair("render " + s.string() + " --frame 4 -o " + (dir_ / "r.png").string());
+    EXPECT_EQ(still.exit_code, 2) << still.err;
+    EXPECT_FALSE(fs::exists(dir_ / "r.png"));
+}
+
+// Frames of a --preview run are not the full run's: --resume paints them again.
+TEST_F(Animate, ResumeRepaintsFramesOfAnotherSize) {
+    const fs::path s = scene(walk_scene(kWalk));
+    ASSERT_EQ(animate(s, "mixed", "--frames 1-2 --preview").exit_code, 0);
+    ASSERT_EQ(animate(s, "full", "--frames 1-2").exit_code, 0);
+    auto r = animate(s, "mixed", "--frames 1-3 --resume");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    size_t saved = 0, pos = 0;
+    while ((pos = r.out.find("Saved: ", pos)) != std::string::npos) ++saved, ++pos;
+    EXPECT_EQ(saved, 3u);
+    EXPECT_EQ(frame("mixed", 1), frame("full", 1));
+    EXPECT_EQ(frame("mixed", 2), frame("full", 2));
 }
 
 }  // namespace

@@ -36,7 +36,11 @@ TEST(FramePattern, HashesAndPrintfBecomeTheFrameNumber) {
     EXPECT_EQ(parse_frame_pattern("shot.%04d.tif").path(7), "shot.0007.tif");
     EXPECT_EQ(parse_frame_pattern("shot.%d.png").path(7), "shot.7.png");
     EXPECT_EQ(parse_frame_pattern("a/b_%3d.png").path(5), "a/b_005.png");
-    for (const char* bad : {"frame.png", "f##_##.png", "f%04d_#.png", "f#/x.png"}) {
+    EXPECT_EQ(parse_frame_pattern("f############.png").path(7), "f000000000007.png");
+    EXPECT_EQ(parse_frame_pattern("f%012d.png").path(999999999), "f000999999999.png");
+    EXPECT_EQ(parse_frame_pattern("f##.png").path(12345), "f12345.png");  // wider than its pad
+    for (const char* bad : {"frame.png", "f##_##.png", "f%04d_#.png", "f#/x.png", "f%013d.png",
+                            "f%0999999999999d.png", "f#############.png"}) {
         SCOPED_TRACE(bad);
         EXPECT_THROW(parse_frame_pattern(bad), InputError);
     }

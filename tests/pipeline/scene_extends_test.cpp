@@ -87,6 +87,11 @@ TEST_F(Extends, BadBasesAreOneClearError) {
         std::string::npos);
     EXPECT_NE(error_of(write("b.json", R"({"extends": 3})")).find("/extends: expected a scene"),
               std::string::npos);
+    fs::create_directories(dir_ / "other");
+    write("other/base.json", R"({"families": {}})");
+    EXPECT_NE(error_of(write("s.json", R"({"extends": "other/base.json"})"))
+                  .find("/extends: expected the name of a scene file in the same folder"),
+              std::string::npos);
     write("c1.json", R"({"extends": "c2"})");
     EXPECT_NE(error_of(write("c2.json", R"({"extends": "c1"})")).find("a cycle"),
               std::string::npos);

@@ -97,9 +97,11 @@ TEST(Shot, AFrameDoesNotDependOnTheFramesPaintedBefore) {
     EXPECT_EQ(first.depth, again.depth);
     EXPECT_EQ(first.object_id, again.object_id);
     // And a shot built anew paints it the same, on one thread as on two.
-    Frame fresh;
-    tbb::task_arena(1).execute([&] { fresh = paint_frame(build_shot(lit_scene()), near, s); });
-    EXPECT_TRUE(same_pixels(first, fresh));
+    Frame one, two;
+    tbb::task_arena(1).execute([&] { one = paint_frame(build_shot(lit_scene()), near, s); });
+    tbb::task_arena(2).execute([&] { two = paint_frame(build_shot(lit_scene()), near, s); });
+    EXPECT_TRUE(same_pixels(first, one));
+    EXPECT_TRUE(same_pixels(first, two));
 }
 
 TEST(Shot, PlansOnlyWhatTheSceneNeeds) {
@@ -154,7 +156,6 @@ TEST(Sprites, EveryParticleIsASpriteOrCulled) {
     EXPECT_EQ(set.sprites.size() + set.culled, particles);
     EXPECT_EQ(set.leaf + set.bark + set.surface, set.sprites.size());
     EXPECT_GT(set.hidden, 0u);
-    EXPECT_LE(set.hidden, set.culled);
     for (const Sprite& sp : set.sprites) {
         ASSERT_TRUE(std::isfinite(sp.x) && std::isfinite(sp.y) && sp.depth > 0);
         ASSERT_GT(sp.half_w, 0.0f);
