@@ -119,6 +119,14 @@ TEST_F(Animate, ProgressAndSavedLinesForFarms) {
     EXPECT_NE(r.out.find("Saved: " + (dir_ / "log" / "f_04.png").string() + "\n"),
               std::string::npos);
     EXPECT_FALSE(fs::exists(dir_ / "log" / "f_03.png"));
+    // On a terminal: a bar with frames done and frames per second, no farm lines.
+    auto bar = run_pleinair("animate " + s.string() + " -o " + (dir_ / "bar").string() +
+                            "/f_##.png --frames 1-2 --progress bar");
+    ASSERT_EQ(bar.exit_code, 0) << bar.err;
+    EXPECT_NE(bar.out.find("2/2 frames"), std::string::npos) << bar.out;
+    EXPECT_NE(bar.out.find("frames/s"), std::string::npos) << bar.out;
+    EXPECT_EQ(bar.out.find("Progress: "), std::string::npos);
+    EXPECT_EQ(bar.out.find("Saved: "), std::string::npos);
 }
 
 TEST_F(Animate, BadRangesAndTracksExitTwoAndWriteNothing) {

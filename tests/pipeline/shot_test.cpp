@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <glm/geometric.hpp>
 
 #include "pipeline/bin.h"
 #include "pipeline/image_io.h"
@@ -192,6 +193,36 @@ TEST(Bins, EveryTileASpriteTouchesListsItInOrder) {
     EXPECT_EQ(b.bins[1], (std::vector<uint32_t>{0}));
     EXPECT_TRUE(b.bins[2].empty());
     EXPECT_EQ(b.bins[3], (std::vector<uint32_t>{2}));
+}
+
+// A keyed sun: its scene is built for each frame (its casters face it), nothing of it in the
+// shot; frames at two times differ, and a frame does not depend on the one painted before.
+TEST(Shot, AMovingSunCastsItsShadowsPerFrame) {
+    SceneDesc s = lit_scene();
+    s.sun_track = {SunKey{0, glm::normalize(glm::dvec3(-0.5, 0.6, 0.4))},
+                   SunKey{1, glm::normalize(glm::dvec3(0.6, 0.5, -0.3))}};
+    ShotOptions o;
+    o.cache_sun_light = true;  // asked for, but a moving sun cannot be cached
+    const Shot shot = build_shot(s, o);
+    EXPECT_TRUE(shot.plan.sun_moves);
+    EXPECT_FALSE(shot.plan.sun_light);
+    EXPECT_FALSE(shot.sun_rays);
+    EXPECT_TRUE(shot.view_rays);
+    const FrameSettings settings = scene_frame_settings(shot.scene);
+    EXPECT_EQ(plan_frame(shot, settings).sun_light, SunLightSource::kFrameScene);
+    FrameReport rep;
+    const Frame early = paint_frame(shot, view_at(shot.scene, 0.0), settings, &rep);
+    EXPECT_GT(rep.shadow_rays, 0u);
+    bool built = false;
+    for (const auto& p : rep.passes) built |= p.name == "sun scene" && p.ran;
+    EXPECT_TRUE(built);
+    const Frame late = paint_frame(shot, view_at(shot.scene, 1.0), settings);
+    EXPECT_FALSE(same_pixels(early, late)) << "the light moved";
+    EXPECT_TRUE(same_pixels(early, paint_frame(shot, view_at(shot.scene, 0.0), settings)));
+    // The sun's key at time 0 is the still sun: the same picture as without a track.
+    SceneDesc still = lit_scene();
+    still.sun_direction = s.sun_track[0].direction;
+    EXPECT_TRUE(same_pixels(early, paint(build_shot(still))));
 }
 
 // Strokes composited nearest first stop where less than coverage_cutoff of the light is left:
