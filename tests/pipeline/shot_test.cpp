@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "pipeline/bin.h"
+#include "pipeline/composite.h"
 #include "pipeline/image_io.h"
 #include "pipeline/paint.h"
 #include "pipeline/sprites.h"
@@ -223,6 +224,57 @@ TEST(Shot, AMovingSunCastsItsShadowsPerFrame) {
     SceneDesc still = lit_scene();
     still.sun_direction = s.sun_track[0].direction;
     EXPECT_TRUE(same_pixels(early, paint(build_shot(still))));
+}
+
+// The stages under the strokes on their own: the background and the underpainting only where a
+// stroke layer lets light through (every underpainting cell when depth is asked for), and the
+// composite C + T * what lies under.
+TEST(Composite, UnderTheStrokesOnlyWhereLightGetsThrough) {
+    const Shot shot = build_shot(lit_scene());
+    const FrameView view = still_view(shot.scene);
+    const Camera& cam = view.camera;
+    FrameSettings settings = scene_frame_settings(shot.scene);
+    const FramePlan plan = plan_frame(shot, settings);
+    const size_t npix = static_cast<size_t>(cam.width) * cam.height;
+    StrokeLayer open, covered;
+    for (StrokeLayer* l : {&open, &covered}) {
+        l->width = cam.width, l->height = cam.height, l->cutoff = 1.0f / 2048;
+        l->color.assign(3 * npix, 0.0f);
+    }
+    open.through.assign(npix, 1.0f);
+    covered.through.assign(npix, 0.0f);
+    covered.color.assign(3 * npix, 0.25f);
+
+    Frame a = make_frame(cam, false), b = make_frame(cam, false);
+    paint_background(shot.scene, cam, open, a);
+    paint_background(shot.scene, cam, covered, b);
+    EXPECT_GT(a.rgba[3], 0.0f);
+    for (float v : b.rgba) ASSERT_EQ(v, 0.0f) << "nothing painted under covered pixels";
+    const uint64_t all =
+        paint_underpainting(shot, view, plan, settings.render, shot.sun_rays.get(), open, a);
+    const uint64_t none =
+        paint_underpainting(shot, view, plan, settings.render, shot.sun_rays.get(), covered, b);
+    const uint64_t cells = static_cast<uint64_t>(std::ceil(cam.width * 0.5)) *
+                           static_cast<uint64_t>(std::ceil(cam.height * 0.5));
+    EXPECT_EQ(all, cells);
+    EXPECT_EQ(none, 0u);
+    FramePlan with_depth = plan;
+    with_depth.aovs = true;
+    Frame c = make_frame(cam, true);
+    EXPECT_EQ(paint_underpainting(shot, view, with_depth, settings.render, shot.sun_rays.get(),
+                                  covered, c),
+              cells);
+    // One pixel half covered: C + T * under.
+    Frame d = a;
+    StrokeLayer half = open;
+    half.through[0] = 0.5f;
+    half.color[0] = 0.1f;
+    composite_strokes(half, plan, d);
+    EXPECT_FLOAT_EQ(d.rgba[0], 0.1f + 0.5f * a.rgba[0]);
+    EXPECT_FLOAT_EQ(d.rgba[4], a.rgba[4]);  // an open pixel keeps what lies under
+    composite_strokes(covered, plan, b);
+    EXPECT_EQ(b.rgba[0], 0.25f);
+    EXPECT_EQ(b.rgba[3], 1.0f);
 }
 
 // Strokes composited nearest first stop where less than coverage_cutoff of the light is left:
