@@ -161,17 +161,44 @@ LeafParticles emit_leaves(const TreeMesh& tm, const TreeParams& params, uint64_t
     out.tree_id.assign(n, tree_id);
     out.fade_begin.resize(n);
     out.fade_end.resize(n);
+    // Each leaf's rank in distance from the centre, 0 innermost .. 1 outermost (ties by index),
+    // the distance measured in units of the crown's spread along each axis: a tall poplar then
+    // thins from its top and sides alike instead of losing its height first. The fade follows
+    // the rank, not the distance itself, so a crown whose leaves crowd at middle distances still
+    // thins at one pace across the circles.
+    glm::dvec3 spread(0.0);
+    for (const auto& p : pos) spread += (p - center) * (p - center);
+    spread = glm::sqrt(spread / static_cast<double>(std::max<size_t>(n, 1)));
+    const double floor = 1e-3 * std::max({spread.x, spread.y, spread.z, 1e-9});
+    spread = glm::max(spread, glm::dvec3(floor));
+    std::vector<double> normalised(n);
+    for (size_t i = 0; i < n; ++i) normalised[i] = glm::length((pos[i] - center) / spread);
+    std::vector<size_t> order(n);
+    for (size_t i = 0; i < n; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+        return normalised[a] < normalised[b] || (normalised[a] == normalised[b] && a < b);
+    });
+    std::vector<double> rank(n, 0.0);
+    for (size_t r = 0; r < n; ++r)
+        rank[order[r]] = n > 1 ? static_cast<double>(r) / static_cast<double>(n - 1) : 0.0;
     for (size_t i = 0; i < n; ++i) {
         out.position[i] = glm::vec3(pos[i]);
         out.branch_distance[i] = max_along > 0 ? static_cast<float>(along[i] / max_along) : 0.0f;
         out.center_distance[i] =
             max_center > 0 ? static_cast<float>(std::min(1.0, from_center[i] / max_center)) : 0.0f;
         out.label[i] = labels[i];
-        // Outer leaves (centre distance 1) start fading at the near circle, inner ones last.
-        double start = bias(1.0f - out.center_distance[i], static_cast<float>(fp.threshold_bias));
-        start = std::clamp(start + fp.threshold_var * g_start[i], 0.0, 1.0);
+        // The innermost `keep` of the leaves never fade: they paint the tree beyond the far
+        // circle. The others fade completely inside the circles, the outermost from the near
+        // one, so no leaf is left half transparent at the far circle.
         double len = std::max(fp.length_min, std::clamp(fp.length.base + fp.length.var * g_len[i],
                                                         fp.length.lo, fp.length.hi));
+        len = std::min(len, 1.0);
+        double start = 2.0;
+        if (rank[i] >= fp.keep) {
+            const double x = fp.keep < 1 ? (1.0 - rank[i]) / (1.0 - fp.keep) : 0.0;
+            start = bias(static_cast<float>(x), static_cast<float>(fp.threshold_bias));
+            start = std::clamp(start * (1.0 - len) + fp.threshold_var * g_start[i], 0.0, 1.0 - len);
+        }
         out.fade_begin[i] = static_cast<float>(start);
         out.fade_end[i] = static_cast<float>(start + len);
     }

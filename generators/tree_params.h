@@ -78,6 +78,7 @@ struct FadeParams {
     double threshold_var = 0.05;
     Param length{0.3, 0.05, 0, 10};
     double length_min = 0.15;
+    double keep = 0.2;  // share of the innermost leaves that never fade
 };
 
 struct LeafParams {
@@ -233,19 +234,25 @@ void visit_tree_params(P& p, V& v) {
                 "fade",
                 "Level-of-detail fade thresholds (thesis IV.6), in the tree's distance "
                 "value (0 at the near circle, 1 at the far one). Leaves farther from the "
-                "centre fade first.",
+                "centre fade first, by their rank in that distance, so a crown thins at one "
+                "pace across the circles; each fade ends by the far circle.",
                 [&] {
                     auto& f = l.fade;
                     v.number(
                         "threshold_bias", f.threshold_bias, Range{0.001, 0.999}, "",
-                        "Bias applied to (1 - distance from centre) to place where a leaf starts "
-                        "fading; below 0.5 every leaf fades sooner.");
+                        "Bias applied to (1 - the leaf's rank in distance from the centre, 0 "
+                        "innermost, 1 outermost) to place where it starts fading; below 0.5 every "
+                        "leaf fades sooner.");
                     v.number("threshold_var", f.threshold_var, Range{0, 1}, "",
                              "Gaussian standard deviation added to each leaf's start.");
                     v.param("length", f.length, "",
                             "Span of distance values over which a leaf fades out. Per leaf.");
-                    v.number("length_min", f.length_min, Range{0, 10}, "",
+                    v.number("length_min", f.length_min, Range{0, 1}, "",
                              "Smallest span of a fade.");
+                    v.number("keep", f.keep, Range{0, 1}, "",
+                             "Share of the innermost leaves that never fade: the tree beyond the "
+                             "far circle is painted with them, grown. Every other leaf has "
+                             "faded out completely by the far circle.");
                 });
         });
     v.object("lod",

@@ -17,8 +17,10 @@ using VectorField = glm::dvec3 CameraKey::*;
 using ScalarField = double CameraKey::*;
 
 constexpr ScalarField kCircles[] = {&CameraKey::leaf_near, &CameraKey::leaf_far,
-                                    &CameraKey::trunk_near, &CameraKey::trunk_far};
-constexpr const char* kCircleNames[] = {"leaf_near", "leaf_far", "trunk_near", "trunk_far"};
+                                    &CameraKey::trunk_near, &CameraKey::trunk_far,
+                                    &CameraKey::near_field};
+constexpr const char* kCircleNames[] = {"leaf_near", "leaf_far", "trunk_near", "trunk_far",
+                                        "near_field"};
 
 // The cubic on [0, 1] with values p0, p1 and derivatives m0, m1 at its ends.
 template <class T>
@@ -302,7 +304,10 @@ CameraKey track_at(const CameraTrack& track, double t) {
 }
 
 CameraParams camera_at(const CameraTrack& track, const CameraParams& base, double t) {
-    const CameraKey key = track_at(track, t);
+    return camera_of(track_at(track, t), base);
+}
+
+CameraParams camera_of(const CameraKey& key, const CameraParams& base) {
     CameraParams params = base;
     params.position = key.position;
     params.look_at = key.look_at;
@@ -347,19 +352,13 @@ std::vector<Problem> validate_track(const CameraTrack& track, const std::string&
         if (!(k.ease_out >= 0 && k.ease_out <= 1))
             problems.push_back(
                 {at("ease_out"), "must be in [0, 1], got " + format_number(k.ease_out)});
-        for (int c = 0; c < 4; ++c)
-            if (!(k.*kCircles[c] >= 0) || !std::isfinite(k.*kCircles[c]))
-                problems.push_back({at(kCircleNames[c]), "must be a finite distance >= 0, got " +
-                                                             format_number(k.*kCircles[c])});
-        for (int c = 0; c < 4; c += 2)
-            if (k.*kCircles[c] > 0 && k.*kCircles[c + 1] > 0 && k.*kCircles[c] > k.*kCircles[c + 1])
-                problems.push_back(
-                    {at(kCircleNames[c + 1]), std::string("must be >= ") + kCircleNames[c] + " (" +
-                                                  format_number(k.*kCircles[c]) + "), got " +
-                                                  format_number(k.*kCircles[c + 1])});
+        for (Problem& p :
+             validate_circles({k.leaf_near, k.leaf_far, k.trunk_near, k.trunk_far, k.near_field},
+                              pointer + "/" + std::to_string(i)))
+            problems.push_back(std::move(p));
     }
     // A circle set (non-zero) on some keys only has nothing to interpolate from elsewhere.
-    for (int c = 0; c < 4; ++c) {
+    for (int c = 0; c < 5; ++c) {
         size_t set = 0, first_set = 0;
         for (size_t i = 0; i < keys.size(); ++i)
             if (keys[i].*kCircles[c] != 0 && set++ == 0) first_set = i;
@@ -371,6 +370,14 @@ std::vector<Problem> validate_track(const CameraTrack& track, const std::string&
                                         " sets it, and a circle is set on every key or none"});
     }
     return problems;
+}
+
+DistanceCircles circles_of(const CameraKey& k, const DistanceCircles& fallback) {
+    DistanceCircles c = fallback;
+    if (k.leaf_far > 0) c.leaf_near = k.leaf_near, c.leaf_far = k.leaf_far;
+    if (k.trunk_far > 0) c.trunk_near = k.trunk_near, c.trunk_far = k.trunk_far;
+    if (k.near_field > 0) c.near_field = k.near_field;
+    return c;
 }
 
 glm::dvec3 sun_at(const std::vector<SunKey>& keys, double t) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "pipeline/camera.h"
+#include "pipeline/distance_circles.h"
 #include "pipeline/error.h"
 
 namespace pleinair {
@@ -21,9 +22,10 @@ struct CameraKey {
     // Slows the approach to this key (ease_in) and the departure from it (ease_out): 0 is the
     // plain spline, 1 brings the camera to rest at the key, values between blend.
     double ease_in = 0, ease_out = 0;
-    // The level-of-detail distance circles (world units) of the next issue; 0 = not set. A
-    // circle is set on every key of a track or on none.
-    double leaf_near = 0, leaf_far = 0, trunk_near = 0, trunk_far = 0;
+    // The level-of-detail distance circles (world units, DistanceCircles); 0 = not set. A
+    // circle is set on every key of a track or on none; one the track does not set comes from
+    // the camera's.
+    double leaf_near = 0, leaf_far = 0, trunk_near = 0, trunk_far = 0, near_field = 0;
 };
 
 enum class TrackInterpolation {
@@ -61,8 +63,13 @@ struct CameraTrack {
 // Requires a track that validate_track accepts.
 CameraKey track_at(const CameraTrack& track, double t);
 
+// The key's circles; `fallback`'s where the key leaves a circle unset (a pair is taken whole).
+DistanceCircles circles_of(const CameraKey& key, const DistanceCircles& fallback);
+
 // `base` (its width and height) with the track's position, look-at, up and fov at time t.
 CameraParams camera_at(const CameraTrack& track, const CameraParams& base, double t);
+// `base` with the key's position, look-at, up and fov.
+CameraParams camera_of(const CameraKey& key, const CameraParams& base);
 
 // Path length of the position between the first and the last key (Gauss-Legendre).
 double track_length(const CameraTrack& track);

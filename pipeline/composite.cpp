@@ -132,8 +132,6 @@ struct TilePainter {
 
     // Premultiplied "under" of one stroke fragment: it shows through what lies in front.
     void composite(int x, int y, Color col, float a, uint32_t idx) {
-        const Sprite& sp = set.sprites[idx];
-        a *= sp.opacity;
         const size_t li = layer.at(x, y);
         float& through = layer.through[li];
         const float w = through * a;
@@ -160,6 +158,14 @@ struct TilePainter {
             const float half = 0.5f * std::sqrt(width * width + 4.0f * w * w);
             pf.stroke_feather_min = mid - half;
             pf.stroke_feather_max = mid + half;
+        }
+        // A dry-brush fade: the threshold rises with the fade until no noise value (at most 1
+        // under an edge mask of at most 1) passes it. Made transparent instead, fading strokes
+        // read as blur.
+        if (sp.fade < 1.0f) {
+            const float shift = (1.0f - std::max(sp.fade, 0.0f)) * (1.0f - pf.stroke_feather_min);
+            pf.stroke_feather_min += shift;
+            pf.stroke_feather_max += shift;
         }
         return pf;
     }

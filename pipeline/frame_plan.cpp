@@ -1,6 +1,7 @@
 // plan_frame: every decision of a frame, from the shot's plan and the frame settings.
 #include "pipeline/frame_plan.h"
 
+#include "pipeline/lod.h"
 #include "pipeline/shot.h"
 
 namespace pleinair {
@@ -66,7 +67,14 @@ FramePlan plan_frame(const Shot& shot, const FrameSettings& settings) {
     add("underpaint", plan.underpaint,
         plan.underpaint ? "terrain or rocks are visible: flat colour and depth under the strokes"
                         : "no visible mesh (no terrain, no rocks)");
-    add("level of detail", false, "no distance circles (level of detail is not built yet)");
+    const bool circles = scene_has_circles(shot);
+    plan.lod = circles && settings.render.level_of_detail;
+    add("level of detail", plan.lod,
+        !circles ? "the camera carries no distance circles"
+        : plan.lod
+            ? "the camera's distance circles: leaves fade outside in, survivors grow, twigs' "
+              "bark cross-fades to the low-detail model"
+            : "render/level_of_detail is false: every tree at full detail");
     plan.bare_blend = settings.bare_blend;
     return plan;
 }

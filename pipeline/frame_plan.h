@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "pipeline/camera.h"
+#include "pipeline/distance_circles.h"
 #include "pipeline/report.h"
 #include "pipeline/settings.h"
 
@@ -26,6 +27,7 @@ struct FrameSettings {
 struct FrameView {
     Camera camera;
     glm::dvec3 sun_direction{0, 1, 0};  // towards the sun, unit
+    DistanceCircles circles;            // carried by the camera (IV.6)
 };
 
 // How a frame learns each particle's light.
@@ -47,6 +49,7 @@ struct FramePlan {
     bool fragment_shadows = false;  // a 4 x 4 grid of shadow rays per sprite
     bool underpaint = false;        // a visible mesh: flat colour under the strokes
     bool bare_blend = false;
+    bool lod = false;  // the camera carries distance circles and level_of_detail is on
     std::vector<PassReport> decisions;
 };
 

@@ -1,6 +1,8 @@
 // paint_frame: the frame's stages in order, each timed for --explain.
 #include "pipeline/paint.h"
 
+#include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "pipeline/bin.h"
@@ -16,14 +18,18 @@ FrameSettings scene_frame_settings(const SceneDesc& scene, bool aovs) {
     return s;
 }
 
-FrameView still_view(const SceneDesc& scene) { return {scene.camera, scene.sun_direction}; }
+FrameView still_view(const SceneDesc& scene) {
+    return {scene.camera, scene.sun_direction, scene.circles};
+}
 
 FrameView view_at(const SceneDesc& scene, double t) {
     FrameView v = still_view(scene);
     if (!scene.camera_track.keys.empty()) {
-        const CameraParams p = camera_at(scene.camera_track, scene.camera_params, t);
-        if (std::string why = make_camera(p, v.camera); !why.empty())
+        const CameraKey key = track_at(scene.camera_track, t);
+        if (std::string why = make_camera(camera_of(key, scene.camera_params), v.camera);
+            !why.empty())
             throw std::runtime_error("the camera track at " + std::to_string(t) + " s: " + why);
+        v.circles = circles_of(key, scene.circles);
     }
     if (!scene.sun_track.empty()) v.sun_direction = sun_at(scene.sun_track, t);
     return v;
@@ -44,6 +50,37 @@ FrameRange animation_frames(const SceneDesc& scene) {
     times.keys = {CameraKey{span.first}, CameraKey{span.last}};
     return {track_first_frame(times, scene.fps), track_last_frame(times, scene.fps), 1};
 }
+
+namespace {
+
+// The level of detail's line for --explain: the circles, and how far the trees have faded.
+PassReport lod_report(const FrameLod& lod, double ms) {
+    auto num = [](double v) {
+        char b[32];
+        std::snprintf(b, sizeof b, "%g", v);
+        return std::string(b);
+    };
+    const DistanceCircles& c = lod.circles;
+    std::string what;
+    if (lod.leaves) what += "leaves " + num(c.leaf_near) + "-" + num(c.leaf_far);
+    if (lod.trunks)
+        what += std::string(what.empty() ? "" : ", ") + "trunks " + num(c.trunk_near) + "-" +
+                num(c.trunk_far);
+    if (lod.near_field)
+        what += std::string(what.empty() ? "" : ", ") + "near field " + num(c.near_field);
+    std::string detail;
+    if (lod.leaves && !lod.trees.empty()) {
+        double kept = 0;
+        float most = 1;
+        for (const TreeLod& t : lod.trees) kept += t.kept, most = std::max(most, t.growth);
+        detail = "leaves kept " + num(std::round(1000 * kept / lod.trees.size()) / 10) +
+                 "% on average, survivors grown up to " + num(std::round(100 * most) / 100) + "x";
+    }
+    return {"level of detail", true, "distance circles: " + (what.empty() ? "none" : what), ms,
+            detail};
+}
+
+}  // namespace
 
 Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSettings& settings,
                   FrameReport* report) {
@@ -69,7 +106,10 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
     }
 
     PassTimer t;
-    SpriteSet sprites = make_sprites(shot, view, plan, rs, sun_rays);
+    const FrameLod lod = plan.lod ? level_of_detail(shot, view, rs) : FrameLod{};
+    if (plan.lod) rep.passes.push_back(lod_report(lod, t.ms()));
+    t = PassTimer();
+    SpriteSet sprites = make_sprites({shot, view, plan, rs, lod, sun_rays});
     rep.leaf_sprites = sprites.leaf, rep.bark_sprites = sprites.bark;
     rep.surface_sprites = sprites.surface, rep.culled = sprites.culled;
     rep.shadow_rays = sprites.shadow_rays;
@@ -83,7 +123,8 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
              (plan.underpaint ? "; hidden ones culled" : ""),
          t.ms(),
          std::to_string(sprites.sprites.size()) + " sprites, " + std::to_string(sprites.culled) +
-             " culled (" + std::to_string(sprites.hidden) + " hidden)" +
+             " culled (" + std::to_string(sprites.hidden) + " hidden, " +
+             std::to_string(sprites.faded) + " faded out)" +
              (sprites.shadow_rays ? ", " + std::to_string(sprites.shadow_rays) + " shadow rays"
                                   : "")});
 

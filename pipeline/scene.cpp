@@ -146,6 +146,27 @@ void visit_camera_key(CameraKey& k, V& v) {
              "Level-of-detail circle of trunks and branches, near side; 0: not set.");
     v.number("trunk_far", k.trunk_far, {0, 1e9}, "world units",
              "Their far circle; 0: not set; >= trunk_near.");
+    v.number("near_field", k.near_field, {0, 1e9}, "world units",
+             "The innermost circle, where foliage opens into separate strokes; 0: not set.");
+}
+
+// The still camera's circles, which a track's keys override circle by circle.
+template <class V>
+void visit_circles(DistanceCircles& c, V& v) {
+    v.number("leaf_near", c.leaf_near, {0, 1e9}, "world units",
+             "Level of detail (IV.6): leaves and surface detail strokes nearer than this, along "
+             "the view axis, have full detail.");
+    v.number("leaf_far", c.leaf_far, {0, 1e9}, "world units",
+             "Beyond this they have the least (a tree keeps its inner leaves, grown to keep its "
+             "silhouette); 0: no level of detail for leaves. >= leaf_near.");
+    v.number("trunk_near", c.trunk_near, {0, 1e9}, "world units",
+             "Trunks and branches nearer than this show every limb's bark strokes.");
+    v.number("trunk_far", c.trunk_far, {0, 1e9}, "world units",
+             "Beyond this only the low-detail model's (trunk and first branches), cross-faded "
+             "between; 0: no level of detail for trunks. >= trunk_near.");
+    v.number("near_field", c.near_field, {0, 1e9}, "world units",
+             "Nearer than this the foliage opens into separate strokes: interior leaves thin "
+             "out and strokes shrink apart (V.3); 0: off.");
 }
 
 template <class V>
@@ -178,6 +199,7 @@ void visit_scene(SceneDesc& s, V& v) {
         v.number("fov", c.fov, {1e-3, 179}, "deg", "Vertical field of view.");
         v.integer("width", c.width, {1, 16384}, "Image width in pixels.");
         v.integer("height", c.height, {1, 16384}, "Image height in pixels.");
+        visit_circles(s.circles, v);
         v.claim("track");
         v.choice("interpolation", s.camera_track.interpolation, kInterpolations,
                  "How the track runs through its keys: centripetal Catmull-Rom (no loops or "
@@ -258,6 +280,15 @@ void visit_scene(SceneDesc& s, V& v) {
                "Strokes are composited nearest first; once less than this much light is left at "
                "a pixel, the strokes behind are skipped there (each changes it by less than "
                "this, in linear colour). 0 paints every stroke.");
+        v.boolean("level_of_detail", r.level_of_detail,
+                  "Follow the camera's distance circles (IV.6); false paints every tree at full "
+                  "detail whatever the circles, to compare.");
+        v.real("fade_gain", r.fade_gain, {0.01, 0.99}, "",
+               "Perlin gain on each leaf's and stroke's level-of-detail fade: below 0.5 it eases "
+               "in and out (the thesis's \"slight gain\"), 0.5 is linear.");
+        v.real("max_leaf_growth", r.max_leaf_growth, {1, 10}, "",
+               "Most a surviving leaf stroke grows (linear size) to keep its tree's coverage "
+               "as outer leaves fade.");
         v.real("surface_density", s.build.surface_density, {0.05, 16}, "",
                "Surface particles per cluster, relative to the scene's; sprites shrink so the "
                "covered area stays the same.");
@@ -711,6 +742,7 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
     for (const char* key : {"families", "trees", "materials", "rocks", "groups"}) reader.claim(key);
     reader.finish();
     parse_tracks(doc, s, problems, plain);
+    for (Problem& p : validate_circles(s.circles, "/camera")) problems.push_back(std::move(p));
     parse_landscape(doc, source, s, problems, plain);
 
     if (std::string why = make_camera(s.camera_params, s.camera); !why.empty())

@@ -121,7 +121,8 @@ struct SceneDesc {
     double fps = 24;  // frame N of an animated scene is at (N - 1) / fps seconds
     CameraParams camera_params;
     Camera camera;
-    CameraTrack camera_track;                  // keys empty: a still, seen from camera_params
+    CameraTrack camera_track;  // keys empty: a still, seen from camera_params
+    DistanceCircles circles;   // the camera's; a track's keys override them circle by circle
     glm::dvec3 sun_direction{-0.5, 0.8, 0.4};  // towards the sun, unit
     std::vector<SunKey> sun_track;             // empty: the sun stays at sun_direction
     bool sun_casts_shadows = false;

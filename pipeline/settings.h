@@ -33,6 +33,10 @@ struct RenderSettings {
     // Light left at a pixel below which the strokes behind are not painted (front to back); 0
     // paints every stroke.
     float coverage_cutoff = 1.0f / 2048.0f;
+    // Level of detail (IV.6), when the camera has distance circles.
+    bool level_of_detail = true;
+    float fade_gain = 0.4f;        // Perlin gain on a fade: eases in and out
+    float max_leaf_growth = 2.5f;  // survivors grow at most this much (linear)
 };
 
 }  // namespace pleinair

@@ -30,6 +30,9 @@ struct SpriteInput {
     // distance fade. Null for leaves and bark.
     const SurfaceParticles* surface = nullptr;
     size_t index = 0;
+    float lod_opacity = 1;   // the level of detail's fade (IV.6)
+    float lod_scale = 1;     // and growth, on screen after the smallest stroke's clamp
+    float lod_distance = 0;  // the tree's leaf distance value: interior darkening weakens
 };
 
 // What every sprite of a frame shares.
@@ -38,6 +41,7 @@ struct SpriteContext {
     const Camera& cam;
     const RenderSettings& rs;
     const FramePlan& plan;
+    const FrameLod& lod;
     glm::vec3 sun;
 };
 
@@ -58,19 +62,24 @@ bool sprite_size(const SpriteContext& c, const SpriteMaterial& m, const SpriteIn
         // Detail strokes fade over their own span of the distance value (IV.7).
         const float fb = S.fade_begin(in.index);
         if (fb <= 1.0f) {
+            // Each stroke's own depth (not its patch's corners'), in the leaf circles when the
+            // camera carries them, in the atmosphere's range otherwise.
             const Atmosphere& a = c.shot.scene.atmosphere;
-            float dv =
-                color_detail::unit_in(static_cast<float>(z), a.near_distance, a.far_distance);
+            const DistanceCircles& dc = c.lod.circles;
+            float dv = c.lod.surfaces ? circle_value(z, dc.leaf_near, dc.leaf_far)
+                                      : color_detail::unit_in(static_cast<float>(z),
+                                                              a.near_distance, a.far_distance);
             opacity = 1.0f - smoothstep(fb, S.fade_end(in.index), dv);
             if (!(opacity > 0.0f)) return false;
         }
     }
     const float min_px = c.rs.min_stroke_px;
     if (w < min_px) l *= min_px / std::max(w, 1e-12f), w = min_px;
+    w *= in.lod_scale, l *= in.lod_scale;
     if (!(w > 0.0f) || !(l > 0.0f) || !std::isfinite(w) || !std::isfinite(l)) return false;
     out.half_w = 0.5f * w;
     out.half_l = 0.5f * l;
-    out.opacity = opacity;
+    out.fade = opacity * in.lod_opacity;
     return true;
 }
 
@@ -111,10 +120,10 @@ void shade_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in,
     if (c.plan.atmosphere)
         d = distance_value(out.depth, a.near_distance, a.far_distance, p.dist_curve_bias);
     const bool surface = in.kind == SpriteKind::kSurface;
-    out.k =
-        stroke_constants(p, n_dot_l, in.center_distance, in.branch_distance, in.label, in.tree_id,
-                         in.shadow, d, 0.0f, !surface && c.plan.tint && p.unique_tint_amt > 0,
-                         c.plan.atmosphere && has_atmosphere_effect(p));
+    out.k = stroke_constants(p, n_dot_l, in.center_distance, in.branch_distance, in.label,
+                             in.tree_id, in.shadow, d, in.lod_distance,
+                             !surface && c.plan.tint && p.unique_tint_amt > 0,
+                             c.plan.atmosphere && has_atmosphere_effect(p));
     if (surface) {
         const SurfaceParticles& S = *in.surface;
         const float h = S.height(in.index);
@@ -176,6 +185,42 @@ SpriteInput sprite_input(const Shot& shot, size_t item, SpriteKind kind, size_t 
         in.tree_id = L.tree_id[j];
     }
     return in;
+}
+
+// The level of detail's fade, place and growth of a tree's particle (IV.6, V.3); false when it
+// has faded out. A survivor that moves takes its ray origin along.
+bool apply_lod(const SpriteContext& c, size_t item, size_t j, SpriteInput& in, RayOrigin& o) {
+    const FrameLod& lod = c.lod;
+    if (in.kind == SpriteKind::kSurface || lod.trees.empty()) return true;
+    const TreeLod& t = lod.trees[item];
+    const BuiltTree& b = (*c.shot.trees)[item];
+    if (in.kind == SpriteKind::kBark) {
+        if (!lod.trunks) return true;
+        const int level = b.tree.branches[b.bark.limb[j]].level;
+        in.lod_opacity = bark_fade(t.trunk, level, in.label, lod.fade_gain);
+        return in.lod_opacity >= kFadedOut;
+    }
+    float scale = 1;
+    if (lod.leaves) {
+        const LeafParticles& L = b.tree.leaves;
+        in.lod_opacity = leaf_fade(t.leaf, L.fade_begin[j], L.fade_end[j], lod.fade_gain);
+        in.lod_distance = t.leaf;
+        if (in.lod_opacity < kFadedOut) return false;
+        if (t.leaf > 0) {
+            scale = t.growth;
+            o.world = in.world = c.shot.placements[item].place(spread_leaf(t, L.position[j]));
+        }
+    }
+    if (lod.near_field) {
+        const float nf = near_field_value(view_depth(c.cam, in.world), lod.circles.near_field);
+        // Thinning leaves shrink away rather than turn transparent: half-transparent strokes
+        // near the camera read as blur, the very thing the near field is there to avoid.
+        const float thin = near_field_fade(nf, in.center_distance, in.label, lod.fade_gain);
+        if (thin < kThinnedOut) return false;
+        scale *= thin * near_field_scale(nf);
+    }
+    in.lod_scale = scale;
+    return in.lod_opacity >= kFadedOut;
 }
 
 // Counters summed over threads: one shared atomic, bumped for every ray, bounces between cores.
@@ -245,9 +290,13 @@ float stroke_screen_px(const Camera& cam, const RenderSettings& r, double world,
     return static_cast<float>(px);
 }
 
-SpriteSet make_sprites(const Shot& shot, const FrameView& view, const FramePlan& plan,
-                       const RenderSettings& rs, const RayScene* sun_rays) {
-    const SpriteContext c{shot, view.camera, rs, plan, glm::vec3(view.sun_direction)};
+SpriteSet make_sprites(const SpriteStageInput& input) {
+    const Shot& shot = input.shot;
+    const FramePlan& plan = input.plan;
+    const RenderSettings& rs = input.settings;
+    const RayScene* sun_rays = input.sun_rays;
+    const SpriteContext c{shot, input.view.camera, rs,
+                          plan, input.lod,         glm::vec3(input.view.sun_direction)};
     const size_t items = shot.item_count();
     std::vector<SpriteSet> per_item(items);
     Counters counters;
@@ -257,11 +306,15 @@ SpriteSet make_sprites(const Shot& shot, const FrameView& view, const FramePlan&
         FlushDenormals ftz;  // Embree's modes, while this task traces
         SpriteSet& out = per_item[i];
         size_t k = 0;  // the particle's index in the shot's light cache
-        for_each_particle(shot, i, [&](SpriteKind kind, size_t j, const RayOrigin& o) {
+        for_each_particle(shot, i, [&](SpriteKind kind, size_t j, const RayOrigin& origin) {
             const size_t slot = k++;
-            // Cheapest test first: on screen, then seen past the surfaces, then lit.
+            // Cheapest test first: faded out, on screen, then seen past the surfaces, then lit.
             MaterialId mat;
+            // Where it is painted, which the level of detail may move; its light stays the
+            // particle's own (as the shot's light cache has it).
+            RayOrigin o = origin;
             SpriteInput in = sprite_input(shot, i, kind, j, o, mat);
+            if (!apply_lod(c, i, j, in, o)) return void((++out.culled, ++out.faded));
             Sprite sp;
             if (!place_sprite(c, mat, in, sp)) return void(++out.culled);
             if (!visible(shot, c.cam, o, counters)) return void(++out.culled);
@@ -269,7 +322,7 @@ SpriteSet make_sprites(const Shot& shot, const FrameView& view, const FramePlan&
                 in.shadow = shot.sun_light[i][slot];
             else if (traced && !plan.fragment_shadows)
                 ++counters.shadow_rays.local(),
-                    in.shadow = sun_light_at(*sun_rays, o, c.sun, rs.shadows);
+                    in.shadow = sun_light_at(*sun_rays, origin, c.sun, rs.shadows);
             shade_sprite(c, mat, in, sp);
             if (plan.fragment_shadows) {
                 sp.grid = static_cast<int32_t>(out.grids.size());
@@ -289,6 +342,7 @@ SpriteSet make_sprites(const Shot& shot, const FrameView& view, const FramePlan&
         all.grids.insert(all.grids.end(), s.grids.begin(), s.grids.end());
         all.sprites.insert(all.sprites.end(), s.sprites.begin(), s.sprites.end());
         all.culled += s.culled;
+        all.faded += s.faded;
         s = SpriteSet{};
     }
     all.shadow_rays = counters.shadow_rays.combine(std::plus<uint64_t>());

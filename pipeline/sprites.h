@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "pipeline/frame_plan.h"
+#include "pipeline/lod.h"
 #include "pipeline/materials.h"
 #include "shading/stroke_shader.h"
 
@@ -24,7 +25,9 @@ struct Sprite {
     float x = 0, y = 0, depth = 0;
     float half_w = 0, half_l = 0;  // across and along the stroke, pixels
     float ax = 0, ay = 1;          // unit screen direction of the stroke's length
-    float opacity = 1;             // detail strokes fading with distance (IV.7)
+    // Fading with distance (IV.6, IV.7): 1 whole, 0 gone. A fade raises the stroke's noise
+    // threshold (composite.cpp), so it breaks into dabs and vanishes with crisp edges.
+    float fade = 1;
     int32_t grid = -1;             // its shadow grid, with shadows per fragment
     MaterialId material;
     uint32_t object_id = 0;
@@ -45,14 +48,28 @@ struct SpriteSet {
     std::vector<Sprite> sprites;  // per tree (bark, then leaves), then per surface chunk
     std::vector<ShadowGrid> grids;
     uint64_t leaf = 0, bark = 0, surface = 0;
-    uint64_t culled = 0;  // behind the camera, off screen, too faint, or hidden
+    uint64_t culled = 0;  // behind the camera, off screen, too faint, faded out, or hidden
+    uint64_t faded = 0;   // of those, faded out by the level of detail
     uint64_t hidden = 0;  // of those, behind an opaque surface
     uint64_t shadow_rays = 0;
 };
 
-// `sun_rays` is the sun's scene for this frame (the shot's, or one built for a moving sun);
-// null when the plan takes no light from rays.
-SpriteSet make_sprites(const Shot& shot, const FrameView& view, const FramePlan& plan,
-                       const RenderSettings& settings, const RayScene* sun_rays);
+// What the sprites stage reads.
+struct SpriteStageInput {
+    const Shot& shot;
+    const FrameView& view;
+    const FramePlan& plan;
+    const RenderSettings& settings;
+    const FrameLod& lod;
+    // The sun's scene for this frame (the shot's, or one built for a moving sun); null when the
+    // plan takes no light from rays.
+    const RayScene* sun_rays = nullptr;
+};
+
+// Strokes whose level-of-detail opacity is below this are not drawn: each would change any
+// pixel by less than the compositing cutoff's order.
+constexpr float kFadedOut = 1.0f / 1024.0f;
+
+SpriteSet make_sprites(const SpriteStageInput& input);
 
 }  // namespace pleinair

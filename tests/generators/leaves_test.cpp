@@ -144,23 +144,54 @@ TEST(Leaves, CentreIsTheCanopyCentroidPlusTheOffset) {
 TEST(Leaves, OuterLeavesFadeFirst) {
     TreeParams p = test::preset("oak");
     p.leaves.fade.threshold_var = 0;
-    p.leaves.fade.length = {0.3, 0.1, 0, 10};
+    p.leaves.fade.length = {0.3, 0, 0, 10};
     p.leaves.fade.length_min = 0.2;
     Tree t = generate_tree(p, 2);
     const auto& l = t.leaves;
     std::vector<size_t> order(l.size());
     for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(),
-              [&](size_t a, size_t b) { return l.center_distance[a] < l.center_distance[b]; });
-    for (size_t i = 1; i < order.size(); ++i)  // without variance: ordered by centre distance
+    // Distance from the centre in units of the crown's spread along each axis.
+    glm::dvec3 spread(0.0), c(t.center);
+    for (const glm::vec3& q : l.position) spread += (glm::dvec3(q) - c) * (glm::dvec3(q) - c);
+    spread = glm::sqrt(spread / static_cast<double>(l.size()));
+    std::vector<double> d(l.size());
+    for (size_t i = 0; i < l.size(); ++i)
+        d[i] = glm::length((glm::dvec3(l.position[i]) - c) / spread);
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return d[a] < d[b]; });
+    for (size_t i = 1; i < order.size(); ++i)  // without variance: ordered by that distance
         ASSERT_LE(l.fade_begin[order[i]], l.fade_begin[order[i - 1]]);
+    size_t kept = 0;
     for (size_t i = 0; i < l.size(); ++i) {
+        if (l.fade_begin[i] > 1.0f) {  // never fades
+            ++kept;
+            continue;
+        }
         ASSERT_GE(l.fade_begin[i], 0.0f);
-        ASSERT_LE(l.fade_begin[i], 1.0f);
+        ASSERT_LE(l.fade_end[i], 1.0f + 1e-6f);  // gone by the far circle: none half there
         ASSERT_GE(l.fade_end[i] - l.fade_begin[i], 0.2f - 1e-6f);
     }
+    // The innermost fifth (p.leaves.fade.keep) never fades.
+    EXPECT_NEAR(static_cast<double>(kept) / l.size(), p.leaves.fade.keep, 1.5 / l.size());
     EXPECT_LT(l.fade_begin[order.back()], 0.01f);  // the outermost starts at the near circle
     EXPECT_GT(l.fade_end[order.front()], 1.0f);    // the innermost survives the far circle
+}
+
+TEST(Leaves, FadesProgressAtOnePaceWhateverTheCrown) {
+    // By rank, not by raw distance: the share of leaves gone grows evenly across the circles.
+    TreeParams p = test::preset("oak");
+    p.leaves.fade.threshold_var = 0;
+    const Tree t = generate_tree(p, 3);
+    const auto& l = t.leaves;
+    ASSERT_GT(l.size(), 500u);
+    for (double v : {0.25, 0.5, 0.75, 1.0}) {
+        size_t gone = 0;
+        for (size_t i = 0; i < l.size(); ++i) gone += l.fade_end[i] <= v;
+        // Fading leaves (four fifths) end evenly over [length, 1] of the distance value.
+        const double len = p.leaves.fade.length.base;
+        const double expect =
+            (1 - p.leaves.fade.keep) * std::clamp((v - len) / (1 - len), 0.0, 1.0);
+        EXPECT_NEAR(static_cast<double>(gone) / l.size(), expect, 0.08) << v;
+    }
 }
 
 TEST(Leaves, FadeVarianceStillFadesOuterLeavesFirstOnAverage) {

@@ -151,8 +151,10 @@ TEST(Sprites, EveryParticleIsASpriteOrCulled) {
     const Shot shot = build_shot(lit_scene());
     const FrameSettings settings = scene_frame_settings(shot.scene);
     const FramePlan plan = plan_frame(shot, settings);
+    const FrameView view = still_view(shot.scene);
+    const FrameLod lod;  // no circles: level of detail off
     const SpriteSet set =
-        make_sprites(shot, still_view(shot.scene), plan, settings.render, shot.sun_rays.get());
+        make_sprites({shot, view, plan, settings.render, lod, shot.sun_rays.get()});
     size_t particles = shot.land->stroke_count();
     for (const BuiltTree& t : *shot.trees) particles += t.tree.leaves.size() + t.bark.size();
     EXPECT_EQ(set.sprites.size() + set.culled, particles);
@@ -170,7 +172,8 @@ TEST(Sprites, EveryParticleIsASpriteOrCulled) {
     p.position = {0, 3, 300};  // beyond the terrain, looking away from it
     p.look_at = p.position + glm::dvec3(0, 0, 10);
     ASSERT_EQ(make_camera(p, away.camera), "");
-    const SpriteSet none = make_sprites(shot, away, plan, settings.render, shot.sun_rays.get());
+    const SpriteSet none =
+        make_sprites({shot, away, plan, settings.render, lod, shot.sun_rays.get()});
     EXPECT_EQ(none.sprites.size(), 0u);
 }
 
