@@ -12,7 +12,7 @@ std::vector<uint32_t> depth_order(const std::vector<Sprite>& sprites) {
     std::vector<uint32_t> order(sprites.size());
     for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<uint32_t>(i);
     tbb::parallel_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-        if (sprites[a].depth != sprites[b].depth) return sprites[a].depth > sprites[b].depth;
+        if (sprites[a].range != sprites[b].range) return sprites[a].range > sprites[b].range;
         return a < b;
     });
     return order;

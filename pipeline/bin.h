@@ -17,8 +17,9 @@ struct TileBins {
     std::vector<std::vector<uint32_t>> bins;  // per tile, row-major: sprite indices back to front
 };
 
-// Back to front by view depth; the sprite's index breaks ties, so the order is total and the
-// same on any number of threads.
+// Back to front by distance from the eye, which turning the camera does not change: two
+// camera-facing sprites ordered by view depth swap as the view turns (thesis V.3, Fig. 31).
+// The sprite's index breaks ties, so the order is total and the same on any number of threads.
 std::vector<uint32_t> depth_order(const std::vector<Sprite>& sprites);
 
 TileBins bin_sprites(const std::vector<Sprite>& sprites, const std::vector<uint32_t>& order,

@@ -99,12 +99,16 @@ struct TileLayer {
     std::array<float, 3 * kTile * kTile> color{};
     std::array<float, kTile * kTile> through;
     std::array<uint32_t, kTile * kTile> front;  // sprite index of the AOVs, or kNone
+    // The coherence bench's trace: the two nearest strokes over 5% opaque (filled when traced).
+    std::array<uint32_t, kTile * kTile> first, second;
     static constexpr uint32_t kNone = ~0u;
 
     TileLayer(int px0, int py0, int px1, int py1, float cutoff)
         : x0(px0), y0(py0), w(px1 - px0), h(py1 - py0), cutoff(cutoff) {
         through.fill(1.0f);
         front.fill(kNone);
+        first.fill(kNone);
+        second.fill(kNone);
     }
     size_t at(int x, int y) const { return static_cast<size_t>(y - y0) * kTile + (x - x0); }
     bool open(int x, int y) const { return through[at(x, y)] > cutoff; }
@@ -140,6 +144,12 @@ struct TilePainter {
         c[1] += col.y * w;
         c[2] += col.z * w;
         if (plan.aovs && a > 0.5f && layer.front[li] == TileLayer::kNone) layer.front[li] = idx;
+        if (plan.trace && a > 0.05f) {
+            if (layer.first[li] == TileLayer::kNone)
+                layer.first[li] = idx;
+            else if (layer.second[li] == TileLayer::kNone && layer.first[li] != idx)
+                layer.second[li] = idx;
+        }
         const bool was_open = through > layer.cutoff;
         through *= 1.0f - a;
         if (was_open && !(through > layer.cutoff)) ++layer.saturated;
@@ -147,7 +157,8 @@ struct TilePainter {
 
     // The feather, widened by the pixel's footprint in noise space at one sample per pixel
     // (with more, the samples filter; widening too measures worse).
-    StrokeShaderParams filtered(const Sprite& sp, const StrokeShaderParams& p) const {
+    StrokeShaderParams filtered(const Sprite& sp, const SpriteMaterial& m) const {
+        const StrokeShaderParams& p = *m.shader;
         StrokeShaderParams pf = p;
         if (rs.filter_strokes && n == 1) {
             // A smoothstep convolved with the footprint's box: widths add roughly in
@@ -159,13 +170,12 @@ struct TilePainter {
             pf.stroke_feather_min = mid - half;
             pf.stroke_feather_max = mid + half;
         }
-        // A dry-brush fade: the threshold rises with the fade until no noise value (at most 1
-        // under an edge mask of at most 1) passes it. Made transparent instead, fading strokes
-        // read as blur.
+        // A dry-brush fade (shading/dry_brush.h): the thresholds rise until the stroke keeps
+        // `fade` of its coverage. Made transparent instead, fading strokes read as blur.
         if (sp.fade < 1.0f) {
-            const float shift = (1.0f - std::max(sp.fade, 0.0f)) * (1.0f - pf.stroke_feather_min);
-            pf.stroke_feather_min += shift;
-            pf.stroke_feather_max += shift;
+            const float rise = dry_brush_rise(m.dry_brush, p, sp.fade);
+            pf.stroke_feather_min += rise;
+            pf.stroke_feather_max += rise;
         }
         return pf;
     }
@@ -232,7 +242,7 @@ struct TilePainter {
         StrokeRamp ramp;
         const bool use_ramp = rs.palette_lut && !grid;
         if (use_ramp) ramp = make_ramp(sp.k, *m.palette);
-        const StrokeShaderParams pf = filtered(sp, *m.shader);
+        const StrokeShaderParams pf = filtered(sp, m);
         if (use_ramp && rs.edge_lut) return rows(idx, r, m, pf, ramp);
         samples(idx, r, m, pf, use_ramp ? &ramp : nullptr, grid);
     }
@@ -244,6 +254,7 @@ struct TilePainter {
                 const size_t li = layer.at(x, y), pi = static_cast<size_t>(y) * frame.width + x;
                 std::copy_n(&layer.color[3 * li], 3, &out.color[3 * pi]);
                 out.through[pi] = layer.through[li];
+                if (plan.trace) out.first[pi] = layer.first[li], out.second[pi] = layer.second[li];
                 if (!plan.aovs || layer.front[li] == TileLayer::kNone) continue;
                 const Sprite& sp = set.sprites[layer.front[li]];
                 frame.depth[pi] = sp.depth;
@@ -365,6 +376,7 @@ StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins
     const size_t npix = static_cast<size_t>(frame.width) * frame.height;
     out.color.assign(3 * npix, 0.0f);
     out.through.assign(npix, 1.0f);
+    if (plan.trace) out.first.assign(npix, ~0u), out.second.assign(npix, ~0u);
     const int n = rs.samples >= 16 ? 4 : rs.samples >= 4 ? 2 : 1;
     std::vector<uint64_t> tile_fragments(bins.bins.size(), 0);
     tbb::parallel_for(size_t{0}, bins.bins.size(), [&](size_t tile) {

@@ -27,6 +27,9 @@ struct StrokeLayer {
     std::vector<float> color;    // 3 per pixel
     std::vector<float> through;  // 1 per pixel
     uint64_t fragments = 0;      // pixel samples shaded
+    // Traced frames only (FramePlan::trace): per pixel the sprite indices of the two nearest
+    // strokes more than 5% opaque there, ~0u for none.
+    std::vector<uint32_t> first, second;
     // Nothing under the strokes can change the pixel by more than the cutoff.
     bool covered(size_t pixel) const { return !(through[pixel] > cutoff); }
 };

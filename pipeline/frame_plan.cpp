@@ -76,6 +76,8 @@ FramePlan plan_frame(const Shot& shot, const FrameSettings& settings) {
               "bark cross-fades to the low-detail model"
             : "render/level_of_detail is false: every tree at full detail");
     plan.bare_blend = settings.bare_blend;
+    plan.trace = settings.trace;
+    plan.noise_reseed = settings.noise_reseed;
     return plan;
 }
 

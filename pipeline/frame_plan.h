@@ -12,6 +12,7 @@
 namespace pleinair {
 
 struct Shot;
+struct FrameView;
 
 // How a frame is painted from a shot: nothing in here rebuilds anything.
 struct FrameSettings {
@@ -20,6 +21,12 @@ struct FrameSettings {
     // Benchmarks only: each sprite's footprint blended with a constant colour at opacity 0.5
     // instead of shaded, to measure what the shader costs over the bare blend.
     bool bare_blend = false;
+    // The coherence bench only (coherence.h): keep the sprites and each pixel's two nearest
+    // strokes (FrameReport::trace); see the level of detail from `lod_view` instead of the
+    // frame's (frozen at another frame); shift every stroke's noise by `noise_reseed` (boiling).
+    bool trace = false;
+    const FrameView* lod_view = nullptr;
+    uint32_t noise_reseed = 0;
 };
 
 // What the camera track and the sun's keys give at the frame's time. The sun is the view's only
@@ -50,6 +57,8 @@ struct FramePlan {
     bool underpaint = false;        // a visible mesh: flat colour under the strokes
     bool bare_blend = false;
     bool lod = false;  // the camera carries distance circles and level_of_detail is on
+    bool trace = false;
+    uint32_t noise_reseed = 0;
     std::vector<PassReport> decisions;
 };
 

@@ -53,7 +53,7 @@ void radial_spread(const LeafParticles& L, const glm::vec3& center, float gain, 
                    TreeLod& t) {
     constexpr int kBins = kElevationBins * kAzimuthBins;
     std::vector<double> all_w(kBins, 0.0), all_r2(kBins, 0.0), kept_w(kBins, 0.0),
-        kept_r2(kBins, 0.0);
+        kept_r2(kBins, 0.0), extent(kBins, 0.0);
     for (size_t j = 0; j < L.size(); ++j) {
         const glm::vec3 v = L.position[j] - center;
         const float r = glm::length(v);
@@ -66,32 +66,57 @@ void radial_spread(const LeafParticles& L, const glm::vec3& center, float gain, 
         const double alpha = leaf_fade(t.leaf, L.fade_begin[j], L.fade_end[j], gain);
         all_w[bin] += 1, all_r2[bin] += double(r) * r;
         kept_w[bin] += alpha, kept_r2[bin] += alpha * r * r;
+        extent[bin] = std::max(extent[bin], double(r));
     }
-    // Bins too faint to measure take the whole tree's ratio.
-    double aw = 0, ar = 0, kw = 0, kr = 0;
+    double aw = 0, ar = 0, kw = 0, kr = 0, reach = 0;
     for (int i = 0; i < kBins; ++i)
-        aw += all_w[i], ar += all_r2[i], kw += kept_w[i], kr += kept_r2[i];
-    if (!(kw > 1e-6) || !(kr > 0)) return;
-    const double whole = std::sqrt((ar / aw) / (kr / kw));
+        aw += all_w[i], ar += all_r2[i], kw += kept_w[i], kr += kept_r2[i],
+            reach = std::max(reach, extent[i]);
+    if (!(kw > 1e-6) || !(kr > 0) || !(reach > 0)) return;
+    // The exponent that takes the survivors' RMS distance to the crown's while the crown's
+    // extent stays put: r -> R (r / R)^gamma.
+    auto exponent = [](double rms_all, double rms_kept, double r) {
+        if (!(rms_kept < rms_all) || !(rms_all < r) || !(rms_kept > 0)) return 1.0;
+        return std::clamp(std::log(rms_all / r) / std::log(rms_kept / r), 0.05, 1.0);
+    };
+    const double whole = exponent(std::sqrt(ar / aw), std::sqrt(kr / kw), reach);
     t.center = center;
-    t.radial.assign(kBins, 1.0f);
+    t.radial.assign(kBins, glm::vec2(1.0f, static_cast<float>(reach)));
     for (int i = 0; i < kBins; ++i) {
-        const double ratio = kept_w[i] > 0.5 && kept_r2[i] > 0
-                                 ? std::sqrt((all_r2[i] / all_w[i]) / (kept_r2[i] / kept_w[i]))
-                             : all_w[i] > 0 ? whole
-                                            : 1.0;
-        t.radial[i] = static_cast<float>(ratio);
+        if (!(all_w[i] > 0)) continue;
+        const double g = kept_w[i] > 0.5 && kept_r2[i] > 0
+                             ? exponent(std::sqrt(all_r2[i] / all_w[i]),
+                                        std::sqrt(kept_r2[i] / kept_w[i]), extent[i])
+                             : whole;
+        t.radial[i] = glm::vec2(static_cast<float>(g), static_cast<float>(extent[i]));
     }
-    // Interpolating between bins blurs their ratios; one more pass scales them so the
-    // survivors' RMS distance comes back to the whole crown's.
-    double moved = 0;
-    for (size_t j = 0; j < L.size(); ++j) {
-        const double alpha = leaf_fade(t.leaf, L.fade_begin[j], L.fade_end[j], gain);
-        if (alpha > 0)
-            moved += alpha * glm::length2(glm::dvec3(spread_leaf(t, L.position[j]) - center));
+    t.max_spread = max_growth;
+    // Each bin's exponent matches its RMS for a survivor at the RMS distance only, and leaves
+    // take exponents interpolated between bins: one factor k on every bin's (1 - gamma), found
+    // by bisection, brings the survivors' RMS distance to the whole crown's.
+    const std::vector<glm::vec2> base = t.radial;
+    const double target = ar / aw;
+    auto rms_with = [&](double k) {
+        for (size_t i = 0; i < base.size(); ++i)
+            t.radial[i].x = static_cast<float>(std::max(0.05, 1.0 - (1.0 - base[i].x) * k));
+        double moved = 0;
+        for (size_t j = 0; j < L.size(); ++j) {
+            const double alpha = leaf_fade(t.leaf, L.fade_begin[j], L.fade_end[j], gain);
+            if (alpha > 0)
+                moved += alpha * glm::length2(glm::dvec3(spread_leaf(t, L.position[j]) - center));
+        }
+        return moved / kw;
+    };
+    double lo = 0, hi = 4;
+    if (rms_with(hi) < target) {
+        lo = hi;
+    } else {
+        for (int it = 0; it < 10; ++it) {
+            const double mid = 0.5 * (lo + hi);
+            (rms_with(mid) < target ? lo : hi) = mid;
+        }
     }
-    const double fix = moved > 0 ? std::sqrt((ar / aw) / (moved / kw)) : 1.0;
-    for (float& r : t.radial) r = static_cast<float>(std::clamp(r * fix, 1.0, double(max_growth)));
+    rms_with(lo);
 }
 
 }  // namespace
@@ -111,9 +136,61 @@ glm::vec3 spread_leaf(const TreeLod& t, const glm::vec3& p) {
     const int a0 = (static_cast<int>(af) + kAzimuthBins) % kAzimuthBins;
     const int a1 = (a0 + 1) % kAzimuthBins;
     auto at = [&](int ei, int ai) { return t.radial[static_cast<size_t>(ei * kAzimuthBins + ai)]; };
-    const float s = (at(e0, a0) * (1 - fa) + at(e0, a1) * fa) * (1 - fe) +
-                    (at(e0 + 1, a0) * (1 - fa) + at(e0 + 1, a1) * fa) * fe;
-    return t.center + v * s;
+    const glm::vec2 g = (at(e0, a0) * (1 - fa) + at(e0, a1) * fa) * (1 - fe) +
+                        (at(e0 + 1, a0) * (1 - fa) + at(e0 + 1, a1) * fa) * fe;
+    // r -> R (r / R)^gamma inside the bins' extent R: survivors move out, the silhouette does
+    // not. Near the centre the move is bounded by max_spread.
+    if (!(r < g.y) || !(g.x < 1.0f)) return p;
+    const float factor = std::min(t.max_spread, std::pow(r / g.y, g.x - 1.0f));
+    return t.center + v * factor;
+}
+
+ParticleLod particle_lod(const Shot& shot, const FrameLod& lod, size_t item, SpriteKind kind,
+                         size_t j, const glm::dvec3& world) {
+    const Camera& cam = lod.camera;
+    ParticleLod out;
+    out.world = world;
+    const std::vector<BuiltTree>& trees = *shot.trees;
+    if (kind == SpriteKind::kSurface) {
+        const SurfaceParticles& S = shot.land->chunks[item - trees.size()];
+        const float fb = S.fade_begin(j);
+        if (fb > 1.0f) return out;  // a base stroke: it would leave a hole
+        const double z = view_depth(cam, world);
+        const DistanceCircles& c = lod.circles;
+        const Atmosphere& a = shot.scene.atmosphere;
+        const float dv = lod.surfaces ? circle_value(z, c.leaf_near, c.leaf_far)
+                                      : circle_value(z, a.near_distance, a.far_distance);
+        out.fade = 1.0f - smoothstep(fb, S.fade_end(j), dv);
+        return out;
+    }
+    if (lod.trees.empty()) return out;
+    const TreeLod& t = lod.trees[item];
+    const BuiltTree& b = trees[item];
+    if (kind == SpriteKind::kBark) {
+        if (lod.trunks)
+            out.fade = bark_fade(t.trunk, b.tree.branches[b.bark.limb[j]].level, b.bark.label[j],
+                                 lod.fade_gain);
+        return out;
+    }
+    const LeafParticles& L = b.tree.leaves;
+    if (lod.leaves) {
+        out.fade = leaf_fade(t.leaf, L.fade_begin[j], L.fade_end[j], lod.fade_gain);
+        out.lod_distance = t.darkening_lift;
+        if (out.gone()) return out;
+        if (t.leaf > 0) {
+            out.scale = t.growth;
+            out.world = shot.placements[item].place(spread_leaf(t, L.position[j]));
+            out.moved = true;
+        }
+    }
+    if (lod.near_field) {
+        const float nf = near_field_value(view_depth(cam, out.world), lod.circles.near_field);
+        // Thinning leaves shrink away rather than turn transparent: half-transparent strokes
+        // near the camera read as blur, the very thing the near field is there to avoid.
+        out.thin = near_field_fade(nf, L.center_distance[j], L.label[j], lod.fade_gain);
+        out.scale *= out.thin * near_field_scale(nf);
+    }
+    return out;
 }
 
 bool scene_has_circles(const Shot& shot) {
@@ -124,6 +201,7 @@ bool scene_has_circles(const Shot& shot) {
 
 FrameLod level_of_detail(const Shot& shot, const FrameView& view, const RenderSettings& rs) {
     FrameLod lod;
+    lod.camera = view.camera;
     if (!rs.level_of_detail) return lod;
     const DistanceCircles& c = view.circles;
     lod.circles = c;
@@ -145,9 +223,22 @@ FrameLod level_of_detail(const Shot& shot, const FrameView& view, const RenderSe
         t.leaf = circle_value(depth, c.leaf_near, c.leaf_far);
         const LeafParticles& L = b.tree.leaves;
         if (L.size() == 0 || t.leaf <= 0) return;
-        double sum = 0;
-        for (size_t j = 0; j < L.size(); ++j)
-            sum += leaf_fade(t.leaf, L.fade_begin[j], L.fade_end[j], rs.fade_gain);
+        // Interior darkening stands for shade cast by outer leaves (IV.4.1); as they fade it
+        // weakens (IV.6), by as much as keeps the survivors' mean lightness the whole tree's.
+        // A leaf's lightness is linear in the weakening w: l0 + (l1 - l0) w, at a typical N.L.
+        const StrokeShaderParams& shader = shot.scene.families[b.family].leaf_shader;
+        double sum = 0, full = 0, k0 = 0, k1 = 0;
+        for (size_t j = 0; j < L.size(); ++j) {
+            const double a = leaf_fade(t.leaf, L.fade_begin[j], L.fade_end[j], rs.fade_gain);
+            const double l0 =
+                stroke_lightness(shader, 0.5f, L.center_distance[j], L.branch_distance[j], 0.0f);
+            const double l1 =
+                stroke_lightness(shader, 0.5f, L.center_distance[j], L.branch_distance[j], 1.0f);
+            sum += a, full += l0, k0 += a * l0, k1 += a * (l1 - l0);
+        }
+        if (sum > 0 && k1 > 1e-9 * sum)
+            t.darkening_lift = static_cast<float>(std::clamp(
+                (full / static_cast<double>(L.size()) - k0 / sum) / (k1 / sum), 0.0, 1.0));
         // Cook et al. 2007: the survivors' area grows by 1 / u, so the crown's coverage stays
         // (for leaves overlapping at random).
         t.kept = static_cast<float>(sum / static_cast<double>(L.size()));

@@ -4,29 +4,37 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <vector>
 
+#include "pipeline/camera.h"
 #include "pipeline/distance_circles.h"
+#include "pipeline/materials.h"
 #include "pipeline/settings.h"
 
 namespace pleinair {
 
 struct Shot;
 struct FrameView;
-struct Camera;
 
 struct TreeLod {
     float leaf = 0;    // the leaves' distance value at the tree's centre: 0 full detail, 1 least
     float trunk = 0;   // the bark's: strokes on twigs fade towards 1
     float kept = 1;    // the mean opacity of its leaves at `leaf` (Cook et al.'s u)
     float growth = 1;  // each surviving leaf stroke's linear scale: 1 / sqrt(kept), bounded
+    // How much the interior darkening weakens (the shader's lod_distance): as much as keeps the
+    // survivors' mean lightness the whole tree's.
+    float darkening_lift = 0;
     // Survivors move out from the centre locator to fill the crown's extent direction by
     // direction (the thesis's survivors only grew, so its far trees shrank to their core):
-    // per bin of directions (kElevationBins x kAzimuthBins), the ratio of the RMS distance of
-    // all the tree's leaves to that of its survivors, weighted by their opacity.
+    // per bin of directions (kElevationBins x kAzimuthBins) an exponent gamma and the crown's
+    // extent R there; a survivor at distance r < R moves to R (r / R)^gamma, gamma chosen so
+    // the survivors' RMS distance (weighted by their fade) becomes the whole crown's. Leaves
+    // at the edge stay there, so the silhouette neither shrinks nor grows.
     glm::vec3 center{0.0f};
-    std::vector<float> radial;  // empty: nothing moves
+    std::vector<glm::vec2> radial;  // (gamma, R) per bin; empty: nothing moves
+    float max_spread = 1;           // bound on a survivor's move (a factor on its distance)
 };
 
 // What the sprites stage needs to know of the level of detail, for one frame.
@@ -36,12 +44,14 @@ struct FrameLod {
     bool surfaces = false;    // surface detail strokes fade with the leaf circles
     bool near_field = false;  // foliage opens up near the camera
     DistanceCircles circles;
+    Camera camera;  // what the level of detail was seen from (the frame's camera)
     float fade_gain = 0.5f;
     std::vector<TreeLod> trees;  // one per tree, when leaves or trunks
 };
 
-// The frame's level of detail: off (every flag false) when the settings turn it off or the view
-// carries no circles. Pure: a function of the shot, the view and the settings.
+// The frame's level of detail: off (every flag false but the camera's) when the settings turn
+// it off or the view carries no circles. Pure: a function of the shot, the view and the
+// settings.
 FrameLod level_of_detail(const Shot& shot, const FrameView& view, const RenderSettings& settings);
 
 // Whether the scene carries circles anywhere (on the camera or on its track's keys).
@@ -73,6 +83,30 @@ float near_field_fade(float near_value, float center_distance, float label, floa
 // How much strokes shrink in the near field (1 at its circle, 0.6 at the camera), so they
 // separate instead of blurring into large blobs (V.3).
 constexpr float kThinnedOut = 0.05f;
+
+// Strokes whose level-of-detail fade is below this are not drawn: each would change any pixel
+// by less than the compositing cutoff's order.
+constexpr float kFadedOut = 1.0f / 1024.0f;
+
+// What the level of detail does to one particle's stroke in a frame.
+struct ParticleLod {
+    float fade = 1;          // 1 whole, 0 gone (a dry-brush fade, composite.cpp)
+    float thin = 1;          // the near field's size factor alone
+    float scale = 1;         // the stroke's size on screen: growth, near field
+    float lod_distance = 0;  // how much its tree's interior darkening weakens
+    bool moved = false;      // a survivor spread to its crown: painted at `world`
+    glm::dvec3 world{0.0};
+    // How much of the stroke is there: what the coherence bench follows from frame to frame.
+    float presence() const { return fade * thin; }
+    bool gone() const { return fade < kFadedOut || thin < kThinnedOut; }
+};
+
+// The one rule for a particle (item, kind, index j, at `world`) of the shot: leaves fade by
+// their thresholds, grow and spread; twigs' bark strokes cross-fade; leaves in the near field
+// thin; surface detail strokes fade by their own depth, in the leaf circles when the camera
+// carries them, in the atmosphere's range otherwise (IV.7).
+ParticleLod particle_lod(const Shot& shot, const FrameLod& lod, size_t item, SpriteKind kind,
+                         size_t j, const glm::dvec3& world);
 inline float near_field_scale(float near_value) { return 1.0f - 0.4f * near_value; }
 
 }  // namespace pleinair

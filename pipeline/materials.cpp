@@ -7,8 +7,9 @@ MaterialTable::MaterialTable(const SceneDesc& scene)
     : families_(static_cast<uint32_t>(scene.families.size())) {
     auto add = [&](SpriteKind kind, const StrokeShaderParams& shader, const Palette& palette,
                    const SurfaceShaderParams* surface) {
-        materials_.push_back(
-            {kind, &shader, &palette, surface, make_edge_table(shader.stroke_fullness)});
+        materials_.push_back({kind, &shader, &palette, surface,
+                              make_edge_table(shader.stroke_fullness),
+                              make_dry_brush_table(shader)});
     };
     for (const Family& f : scene.families) {
         add(SpriteKind::kLeaf, f.leaf_shader, f.leaf_palette, nullptr);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "pipeline/scene.h"
+#include "shading/dry_brush.h"
 
 namespace pleinair {
 
@@ -21,6 +22,7 @@ struct SpriteMaterial {
     const Palette* palette = nullptr;
     const SurfaceShaderParams* surface = nullptr;  // surface materials only
     EdgeTable edge;
+    DryBrushTable dry_brush;  // how its strokes fade (composite.cpp)
 };
 
 // An index into a MaterialTable.

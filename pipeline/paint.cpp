@@ -106,7 +106,7 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
     }
 
     PassTimer t;
-    const FrameLod lod = plan.lod ? level_of_detail(shot, view, rs) : FrameLod{};
+    const FrameLod lod = level_of_detail(shot, settings.lod_view ? *settings.lod_view : view, rs);
     if (plan.lod) rep.passes.push_back(lod_report(lod, t.ms()));
     t = PassTimer();
     SpriteSet sprites = make_sprites({shot, view, plan, rs, lod, sun_rays});
@@ -163,6 +163,9 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
     t = PassTimer();
     composite_strokes(strokes, plan, frame);
     rep.passes.push_back({"composite", true, "the strokes over what lies under them", t.ms(), ""});
+    if (plan.trace)
+        rep.trace = std::make_shared<FrameReport::Trace>(FrameReport::Trace{
+            std::move(sprites.sprites), strokes.first, strokes.second, strokes.through});
     return frame;
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "pipeline/frame_range.h"
 #include "pipeline/report.h"
 #include "pipeline/shot.h"
+#include "pipeline/sprites.h"
 
 namespace pleinair {
 
@@ -22,6 +24,14 @@ struct FrameReport {
     uint64_t leaf_sprites = 0, bark_sprites = 0, surface_sprites = 0, culled = 0;
     uint64_t shadow_rays = 0, underpaint_rays = 0;
     uint64_t fragments = 0;  // pixel samples evaluated by the stroke shader
+    // Traced frames only (FrameSettings::trace): the frame's sprites, each pixel's two nearest
+    // strokes (indices into them, ~0u for none) and the light the strokes leave through.
+    struct Trace {
+        std::vector<Sprite> sprites;
+        std::vector<uint32_t> first, second;
+        std::vector<float> through;
+    };
+    std::shared_ptr<Trace> trace;
 };
 
 // The frame settings a scene file asks for.

@@ -30,7 +30,7 @@ struct SpriteInput {
     // distance fade. Null for leaves and bark.
     const SurfaceParticles* surface = nullptr;
     size_t index = 0;
-    float lod_opacity = 1;   // the level of detail's fade (IV.6)
+    float lod_opacity = 1;   // the level of detail's fade (IV.6, IV.7)
     float lod_scale = 1;     // and growth, on screen after the smallest stroke's clamp
     float lod_distance = 0;  // the tree's leaf distance value: interior darkening weakens
 };
@@ -53,25 +53,11 @@ bool sprite_size(const SpriteContext& c, const SpriteMaterial& m, const SpriteIn
     const float jitter = stroke_size_jitter(p, in.label);
     float w = stroke_screen_px(c.cam, c.rs, in.width * jitter, z);
     float l = stroke_screen_px(c.cam, c.rs, in.length * jitter, z);
-    float opacity = 1;
     if (in.surface) {
         const SurfaceParticles& S = *in.surface;
         // Fig. 25: a surface seen edge-on keeps only the middle of its sprites' height.
         glm::vec3 to_eye(glm::normalize(c.cam.eye - in.world));
         l *= crest_factor(glm::dot(S.normal(in.index), to_eye), m.surface->crest_shrink);
-        // Detail strokes fade over their own span of the distance value (IV.7).
-        const float fb = S.fade_begin(in.index);
-        if (fb <= 1.0f) {
-            // Each stroke's own depth (not its patch's corners'), in the leaf circles when the
-            // camera carries them, in the atmosphere's range otherwise.
-            const Atmosphere& a = c.shot.scene.atmosphere;
-            const DistanceCircles& dc = c.lod.circles;
-            float dv = c.lod.surfaces ? circle_value(z, dc.leaf_near, dc.leaf_far)
-                                      : color_detail::unit_in(static_cast<float>(z),
-                                                              a.near_distance, a.far_distance);
-            opacity = 1.0f - smoothstep(fb, S.fade_end(in.index), dv);
-            if (!(opacity > 0.0f)) return false;
-        }
     }
     const float min_px = c.rs.min_stroke_px;
     if (w < min_px) l *= min_px / std::max(w, 1e-12f), w = min_px;
@@ -79,7 +65,7 @@ bool sprite_size(const SpriteContext& c, const SpriteMaterial& m, const SpriteIn
     if (!(w > 0.0f) || !(l > 0.0f) || !std::isfinite(w) || !std::isfinite(l)) return false;
     out.half_w = 0.5f * w;
     out.half_l = 0.5f * l;
-    out.fade = opacity * in.lod_opacity;
+    out.fade = in.lod_opacity;
     return true;
 }
 
@@ -94,6 +80,7 @@ bool place_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in,
     out.x = pr.x;
     out.y = pr.y;
     out.depth = pr.depth;
+    out.range = static_cast<float>(glm::length(in.world - c.cam.eye));
     // Stroke direction on screen: along the projected tangent (a normal-free frame, so a limb
     // seen end-on still gets one), jittered by the label.
     double angle = 0;
@@ -137,6 +124,12 @@ void shade_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in,
     }
     out.kind = in.kind;
     if (!c.plan.sub_stroke) out.k.sub_amt = 0;
+    if (c.plan.noise_reseed) {
+        // Boiling, for the coherence bench: every stroke's noise moves each frame.
+        const float shift = 256.0f * tree_hash01(c.plan.noise_reseed);
+        out.k.offset_s = std::fmod(out.k.offset_s + shift, 256.0f);
+        out.k.offset_t = std::fmod(out.k.offset_t + 0.618f * shift, 256.0f);
+    }
     out.material = mat;
 }
 
@@ -187,40 +180,16 @@ SpriteInput sprite_input(const Shot& shot, size_t item, SpriteKind kind, size_t 
     return in;
 }
 
-// The level of detail's fade, place and growth of a tree's particle (IV.6, V.3); false when it
-// has faded out. A survivor that moves takes its ray origin along.
+// The level of detail's fade, place and growth of a particle (lod.h); false when it has faded
+// out. A survivor that moves takes its ray origin along.
 bool apply_lod(const SpriteContext& c, size_t item, size_t j, SpriteInput& in, RayOrigin& o) {
-    const FrameLod& lod = c.lod;
-    if (in.kind == SpriteKind::kSurface || lod.trees.empty()) return true;
-    const TreeLod& t = lod.trees[item];
-    const BuiltTree& b = (*c.shot.trees)[item];
-    if (in.kind == SpriteKind::kBark) {
-        if (!lod.trunks) return true;
-        const int level = b.tree.branches[b.bark.limb[j]].level;
-        in.lod_opacity = bark_fade(t.trunk, level, in.label, lod.fade_gain);
-        return in.lod_opacity >= kFadedOut;
-    }
-    float scale = 1;
-    if (lod.leaves) {
-        const LeafParticles& L = b.tree.leaves;
-        in.lod_opacity = leaf_fade(t.leaf, L.fade_begin[j], L.fade_end[j], lod.fade_gain);
-        in.lod_distance = t.leaf;
-        if (in.lod_opacity < kFadedOut) return false;
-        if (t.leaf > 0) {
-            scale = t.growth;
-            o.world = in.world = c.shot.placements[item].place(spread_leaf(t, L.position[j]));
-        }
-    }
-    if (lod.near_field) {
-        const float nf = near_field_value(view_depth(c.cam, in.world), lod.circles.near_field);
-        // Thinning leaves shrink away rather than turn transparent: half-transparent strokes
-        // near the camera read as blur, the very thing the near field is there to avoid.
-        const float thin = near_field_fade(nf, in.center_distance, in.label, lod.fade_gain);
-        if (thin < kThinnedOut) return false;
-        scale *= thin * near_field_scale(nf);
-    }
-    in.lod_scale = scale;
-    return in.lod_opacity >= kFadedOut;
+    const ParticleLod l = particle_lod(c.shot, c.lod, item, in.kind, j, in.world);
+    if (l.gone()) return false;
+    in.lod_opacity = l.fade;
+    in.lod_scale = l.scale;
+    in.lod_distance = l.lod_distance;
+    if (l.moved) o.world = in.world = l.world;
+    return true;
 }
 
 // Counters summed over threads: one shared atomic, bumped for every ray, bounces between cores.
@@ -316,6 +285,7 @@ SpriteSet make_sprites(const SpriteStageInput& input) {
             SpriteInput in = sprite_input(shot, i, kind, j, o, mat);
             if (!apply_lod(c, i, j, in, o)) return void((++out.culled, ++out.faded));
             Sprite sp;
+            sp.item = static_cast<uint32_t>(i), sp.particle = static_cast<uint32_t>(j);
             if (!place_sprite(c, mat, in, sp)) return void(++out.culled);
             if (!visible(shot, c.cam, o, counters)) return void(++out.culled);
             if (plan.sun_light == SunLightSource::kShot)

@@ -23,17 +23,25 @@ float grid_at(const ShadowGrid& g, float s, float t);
 
 struct Sprite {
     float x = 0, y = 0, depth = 0;
+    float range = 0;  // distance from the eye: what the depth order sorts by
     float half_w = 0, half_l = 0;  // across and along the stroke, pixels
     float ax = 0, ay = 1;          // unit screen direction of the stroke's length
     // Fading with distance (IV.6, IV.7): 1 whole, 0 gone. A fade raises the stroke's noise
     // threshold (composite.cpp), so it breaks into dabs and vanishes with crisp edges.
     float fade = 1;
-    int32_t grid = -1;             // its shadow grid, with shadows per fragment
+    int32_t grid = -1;  // its shadow grid, with shadows per fragment
     MaterialId material;
     uint32_t object_id = 0;
     SpriteKind kind = SpriteKind::kLeaf;
+    // Which particle: stable from frame to frame (the coherence bench follows it).
+    uint32_t item = 0, particle = 0;
     StrokeConstants k;
 };
+
+// A particle's key, unique in its shot: item, kind and index.
+inline uint64_t sprite_key(const Sprite& sp) {
+    return (uint64_t{sp.item} << 34) | (uint64_t(sp.kind) << 32) | sp.particle;
+}
 
 // Half extents of a sprite's screen-aligned bounding box (the rotated rectangle's).
 void sprite_extent(const Sprite& sp, float& ex, float& ey);
@@ -65,10 +73,6 @@ struct SpriteStageInput {
     // plan takes no light from rays.
     const RayScene* sun_rays = nullptr;
 };
-
-// Strokes whose level-of-detail opacity is below this are not drawn: each would change any
-// pixel by less than the compositing cutoff's order.
-constexpr float kFadedOut = 1.0f / 1024.0f;
 
 SpriteSet make_sprites(const SpriteStageInput& input);
 

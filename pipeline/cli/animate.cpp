@@ -71,6 +71,8 @@ class ProgressReport {
 };
 
 // The frames asked for, each within the track; bad input before any work.
+}  // namespace
+
 std::vector<int> frames_to_paint(const SceneDesc& scene, const std::string& text) {
     const FrameRange all = animation_frames(scene);
     if (all.last < all.first)
@@ -84,6 +86,8 @@ std::vector<int> frames_to_paint(const SceneDesc& scene, const std::string& text
                              std::to_string(all.first) + "-" + std::to_string(all.last));
     return r.frames();
 }
+
+namespace {
 
 // "%" doubled, for a literal part of an ffmpeg image pattern.
 std::string escape_percent(const std::string& s) {
@@ -151,8 +155,11 @@ void encode_video(const std::string& video, const FramePattern& pattern, int fir
     out.commit();
 }
 
+}  // namespace
+
 // A track whose camera degenerates between its keys (its look-at passing through its position)
 // is bad input, found before any frame is painted.
+
 void check_views(const SceneDesc& scene, const std::vector<int>& frames, const std::string& file) {
     for (int f : frames) try {
             view_at(scene, frame_time(f, scene.fps));
@@ -160,6 +167,8 @@ void check_views(const SceneDesc& scene, const std::vector<int>& frames, const s
             throw InputError(file, "/camera/track", "frame " + std::to_string(f) + ": " + e.what());
         }
 }
+
+namespace {
 
 void check_outputs(const AnimateCommand& cmd, const FramePattern& pattern) {
     const std::string first = pattern.path(1);

@@ -58,10 +58,12 @@ struct AnimateCommand {
 };
 
 struct BenchCommand {
-    std::string what;  // "accuracy"
+    std::string what;  // "accuracy" or "coherence"
     std::string scene;
     int repeat = 3;  // renders per setting; the median time is reported
     std::vector<std::string> set;
+    std::string frames;    // coherence: A-B[xSTEP]; empty: the whole track
+    bool preview = false;  // coherence: half the resolution
 };
 
 struct PresetsCommand {
@@ -75,5 +77,13 @@ int run_presets(const PresetsCommand& cmd);
 int run_render(const RenderCommand& cmd);
 int run_animate(const AnimateCommand& cmd);
 int run_bench_accuracy(const BenchCommand& cmd);
+int run_bench_coherence(const BenchCommand& cmd);
+
+struct SceneDesc;
+// The frames of an animated scene that --frames TEXT names (all of its track's when empty);
+// InputError for a bad range or one outside the track.
+std::vector<int> frames_to_paint(const SceneDesc& scene, const std::string& text);
+// InputError naming the first frame whose camera degenerates.
+void check_views(const SceneDesc& scene, const std::vector<int>& frames, const std::string& file);
 
 }  // namespace pleinair

@@ -133,15 +133,21 @@ Command add_animate(CLI::App& app) {
 Command add_bench(CLI::App& app) {
     auto c = std::make_shared<BenchCommand>();
     CLI::App* b = app.add_subcommand("bench", "Measure what accuracy costs in time");
-    b->add_option("what", c->what, "What to measure: accuracy")
+    b->add_option("what", c->what,
+                  "What to measure: accuracy (each quality setting's time and error), "
+                  "coherence (flicker, pops, order swaps, silhouette of an animated shot)")
         ->required()
-        ->check(CLI::IsMember({"accuracy"}));
+        ->check(CLI::IsMember({"accuracy", "coherence"}));
     b->add_option("scene", c->scene, "Scene name or JSON file")->required();
     b->add_option("--repeat", c->repeat, "Renders per setting (median time reported)")
         ->check(CLI::Range(1, 1000));
     b->add_option("--set", c->set, "Override a scene key: POINTER=VALUE");
+    b->add_option("--frames", c->frames, "coherence: frames A-B[xSTEP] (default: the track's)");
+    b->add_flag("--preview", c->preview, "coherence: half the resolution");
 
-    return {b, [=] { return run_bench_accuracy(*c); }};
+    return {b, [=] {
+                return c->what == "coherence" ? run_bench_coherence(*c) : run_bench_accuracy(*c);
+            }};
 }
 
 // The `presets` command's options; returns what runs it once they are parsed.

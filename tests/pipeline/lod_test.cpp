@@ -164,7 +164,7 @@ TEST(LevelOfDetail, TreesLoseLeavesAsTheyRecedeAndSurvivorsGrow) {
         }
         EXPECT_GE(t.growth, 1.0f);
         EXPECT_LE(t.growth, rs.max_leaf_growth);
-        for (float r : t.radial) EXPECT_TRUE(r >= 1.0f && r <= rs.max_leaf_growth);
+        for (glm::vec2 r : t.radial) EXPECT_TRUE(r.x > 0.0f && r.x <= 1.0f && r.y > 0.0f);
         last_kept = t.kept, last_value = t.leaf;
     }
     // Beyond the far circle the innermost fifth remains.
@@ -245,7 +245,7 @@ TEST(LevelOfDetail, NoNaNWithTheCameraInsideACrownOrAtATreesCentre) {
             for (const TreeLod& t : lod.trees) {
                 ASSERT_TRUE(std::isfinite(t.leaf) && std::isfinite(t.kept) &&
                             std::isfinite(t.growth));
-                for (float r : t.radial) ASSERT_TRUE(std::isfinite(r));
+                for (glm::vec2 r : t.radial) ASSERT_TRUE(std::isfinite(r.x) && std::isfinite(r.y));
             }
             FrameReport rep;
             const Frame f = paint_frame(shot, view, fs, &rep);
@@ -256,9 +256,14 @@ TEST(LevelOfDetail, NoNaNWithTheCameraInsideACrownOrAtATreesCentre) {
     // At the centre locator itself, a leaf exactly there stays where it is.
     TreeLod t;
     t.center = glm::vec3(1, 2, 3);
-    t.radial.assign(kElevationBins * kAzimuthBins, 2.0f);
+    t.radial.assign(kElevationBins * kAzimuthBins, glm::vec2(0.5f, 4.0f));
+    t.max_spread = 3;
     EXPECT_EQ(spread_leaf(t, t.center), t.center);
-    EXPECT_EQ(spread_leaf(t, glm::vec3(1, 3, 3)), glm::vec3(1, 4, 3));
+    // r = 1 of R = 4 with gamma 1/2: to 4 * (1/4)^(1/2) = 2. At or beyond R: unmoved.
+    EXPECT_NEAR(glm::length(spread_leaf(t, glm::vec3(1, 3, 3)) - t.center), 2.0f, 1e-5f);
+    EXPECT_EQ(spread_leaf(t, glm::vec3(1, 6, 3)), glm::vec3(1, 6, 3));
+    // Near the centre the move is bounded.
+    EXPECT_NEAR(glm::length(spread_leaf(t, glm::vec3(1, 2.001f, 3)) - t.center), 0.003f, 1e-4f);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <glm/geometric.hpp>
+#include <unordered_set>
 
 #include "pipeline/bin.h"
 #include "pipeline/composite.h"
@@ -152,7 +153,7 @@ TEST(Sprites, EveryParticleIsASpriteOrCulled) {
     const FrameSettings settings = scene_frame_settings(shot.scene);
     const FramePlan plan = plan_frame(shot, settings);
     const FrameView view = still_view(shot.scene);
-    const FrameLod lod;  // no circles: level of detail off
+    const FrameLod lod = level_of_detail(shot, view, settings.render);  // no circles: off
     const SpriteSet set =
         make_sprites({shot, view, plan, settings.render, lod, shot.sun_rays.get()});
     size_t particles = shot.land->stroke_count();
@@ -172,22 +173,57 @@ TEST(Sprites, EveryParticleIsASpriteOrCulled) {
     p.position = {0, 3, 300};  // beyond the terrain, looking away from it
     p.look_at = p.position + glm::dvec3(0, 0, 10);
     ASSERT_EQ(make_camera(p, away.camera), "");
+    const FrameLod away_lod = level_of_detail(shot, away, settings.render);
     const SpriteSet none =
-        make_sprites({shot, away, plan, settings.render, lod, shot.sun_rays.get()});
+        make_sprites({shot, away, plan, settings.render, away_lod, shot.sun_rays.get()});
     EXPECT_EQ(none.sprites.size(), 0u);
 }
 
-TEST(DepthOrder, BackToFrontWithTiesByIndex) {
+TEST(DepthOrder, BackToFrontByDistanceFromTheEyeWithTiesByIndex) {
     std::vector<Sprite> s(5);
-    const float depth[] = {1, 3, 3, 2, 3};
-    for (size_t i = 0; i < s.size(); ++i) s[i].depth = depth[i];
+    const float range[] = {1, 3, 3, 2, 3};
+    // The view depth does not decide: turning the camera changes it, not the order.
+    const float depth[] = {3, 1, 2, 3, 1};
+    for (size_t i = 0; i < s.size(); ++i) s[i].range = range[i], s[i].depth = depth[i];
     EXPECT_EQ(depth_order(s), (std::vector<uint32_t>{1, 2, 4, 3, 0}));
+}
+
+TEST(DepthOrder, TurningTheCameraSwapsNoSprites) {
+    // Thesis V.3, Fig. 31: camera-facing sprites ordered by view depth swap as the view turns.
+    // From one eye, the order of the sprites both views draw is the same.
+    const Shot shot = build_shot(lit_scene());
+    const FrameSettings settings = scene_frame_settings(shot.scene);
+    const FramePlan plan = plan_frame(shot, settings);
+    std::vector<std::vector<uint64_t>> orders;
+    for (double turn : {0.0, 0.25}) {
+        FrameView view = still_view(shot.scene);
+        CameraParams p = shot.scene.camera_params;
+        const glm::dvec3 d = p.look_at - p.position;
+        p.look_at = p.position + glm::dvec3(d.x * std::cos(turn) - d.z * std::sin(turn), d.y,
+                                            d.x * std::sin(turn) + d.z * std::cos(turn));
+        ASSERT_EQ(make_camera(p, view.camera), "");
+        const FrameLod lod = level_of_detail(shot, view, settings.render);
+        const SpriteSet set =
+            make_sprites({shot, view, plan, settings.render, lod, shot.sun_rays.get()});
+        std::vector<uint64_t> keys;
+        for (uint32_t i : depth_order(set.sprites)) keys.push_back(sprite_key(set.sprites[i]));
+        orders.push_back(keys);
+    }
+    std::unordered_set<uint64_t> in_both(orders[1].begin(), orders[1].end());
+    std::vector<uint64_t> a, b;
+    for (uint64_t k : orders[0])
+        if (in_both.count(k)) a.push_back(k);
+    const std::unordered_set<uint64_t> in_a(a.begin(), a.end());
+    for (uint64_t k : orders[1])
+        if (in_a.count(k)) b.push_back(k);
+    ASSERT_GT(a.size(), 100u);
+    EXPECT_EQ(a, b);
 }
 
 TEST(Bins, EveryTileASpriteTouchesListsItInOrder) {
     std::vector<Sprite> s(3);
     s[0].x = 70, s[0].y = 10, s[0].half_w = 10, s[0].half_l = 10;  // tiles 0 and 1 of row 0
-    s[1].x = 10, s[1].y = 10, s[1].half_w = 2, s[1].half_l = 2, s[1].depth = 5;
+    s[1].x = 10, s[1].y = 10, s[1].half_w = 2, s[1].half_l = 2, s[1].range = 5;
     s[2].x = -500, s[2].y = 1e6f, s[2].half_w = 1, s[2].half_l = 1;  // clamped to a corner
     const std::vector<uint32_t> order = depth_order(s);
     const TileBins b = bin_sprites(s, order, 150, 100);

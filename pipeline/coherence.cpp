@@ -1,0 +1,241 @@
+// measure_coherence: four runs of the same frames, compared frame to frame.
+#include "pipeline/coherence.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "pipeline/camera_track.h"
+#include "pipeline/lod.h"
+#include "pipeline/paint.h"
+#include "shading/color.h"
+
+namespace pleinair {
+
+double CoherenceReport::flicker_score() const {
+    const double span = flicker_boiling - flicker_floor;
+    return span > 0 ? (flicker - flicker_floor) / span : 0.0;
+}
+
+namespace {
+
+constexpr uint32_t kNone = ~0u;
+
+// One traced frame, kept until the next is compared with it.
+struct Traced {
+    Frame frame;
+    FrameReport report;
+    std::unordered_map<uint64_t, uint32_t> index;  // sprite key -> its index in the trace
+};
+
+Traced paint_traced(const Shot& shot, const FrameView& view, const FrameSettings& settings) {
+    Traced t;
+    t.frame = paint_frame(shot, view, settings, &t.report);
+    const auto& sprites = t.report.trace->sprites;
+    t.index.reserve(sprites.size());
+    for (uint32_t i = 0; i < sprites.size(); ++i) t.index.emplace(sprite_key(sprites[i]), i);
+    return t;
+}
+
+// The summed colour change along the strokes' motion from `prev` to `cur`, and the pixels it
+// was measured at.
+struct Sum {
+    double total = 0;
+    uint64_t count = 0;
+};
+
+Sum flicker_between(const Traced& prev, const Traced& cur) {
+    const auto& ct = *cur.report.trace;
+    const auto& pt = *prev.report.trace;
+    const int w = cur.frame.width, h = cur.frame.height;
+    std::vector<Sum> rows(static_cast<size_t>(h));
+    tbb::parallel_for(0, h, [&](int y) {
+        Sum& s = rows[static_cast<size_t>(y)];
+        for (int x = 0; x < w; ++x) {
+            const size_t p = static_cast<size_t>(y) * w + x;
+            const uint32_t i = ct.first[p];
+            if (i == kNone) continue;
+            const Sprite& a = ct.sprites[i];
+            const auto found = prev.index.find(sprite_key(a));
+            if (found == prev.index.end()) continue;
+            const Sprite& b = pt.sprites[found->second];
+            // The pixel's place on the stroke, in units of its half length and half width,
+            // then the same place on the stroke as the previous frame drew it.
+            const float dx = x + 0.5f - a.x, dy = y + 0.5f - a.y;
+            const float l = (dx * a.ax + dy * a.ay) / a.half_l;
+            const float u = (dx * a.ay - dy * a.ax) / a.half_w;
+            const float px = b.x + l * b.half_l * b.ax + u * b.half_w * b.ay;
+            const float py = b.y + l * b.half_l * b.ay - u * b.half_w * b.ax;
+            if (!(px >= 0 && py >= 0 && px < w && py < h)) continue;
+            const size_t q = static_cast<size_t>(py) * w + static_cast<size_t>(px);
+            if (pt.first[q] != found->second) continue;  // another stroke is nearest there now
+            double d = 0;
+            for (int c = 0; c < 3; ++c)
+                d += std::abs(linear_to_srgb(cur.frame.rgba[4 * p + c]) -
+                              linear_to_srgb(prev.frame.rgba[4 * q + c]));
+            s.total += d / 3;
+            ++s.count;
+        }
+    });
+    Sum all;
+    for (const Sum& s : rows) all.total += s.total, all.count += s.count;
+    return all;
+}
+
+// The ordered pairs (nearest, next nearest) of visibly different strokes over the frame.
+struct PairHash {
+    size_t operator()(const std::pair<uint64_t, uint64_t>& p) const {
+        return std::hash<uint64_t>()(p.first * 0x9E3779B97F4A7C15ull ^ p.second);
+    }
+};
+using PairSet = std::unordered_set<std::pair<uint64_t, uint64_t>, PairHash>;
+
+PairSet order_pairs(const Traced& t) {
+    const auto& tr = *t.report.trace;
+    PairSet pairs;
+    for (size_t p = 0; p < tr.first.size(); ++p) {
+        const uint32_t a = tr.first[p], b = tr.second[p];
+        if (a == kNone || b == kNone) continue;
+        const Sprite &sa = tr.sprites[a], &sb = tr.sprites[b];
+        if (std::abs(sa.k.lightness - sb.k.lightness) <= 0.05f) continue;
+        pairs.emplace(sprite_key(sa), sprite_key(sb));
+    }
+    return pairs;
+}
+
+uint64_t swaps_between(const PairSet& prev, const PairSet& cur) {
+    uint64_t n = 0;
+    for (const auto& [a, b] : cur) n += prev.count({b, a});
+    return n;
+}
+
+// Each particle's presence in a frame, -1 where it is off screen (or behind the camera).
+std::vector<float> presences(const Shot& shot, const FrameView& view, const RenderSettings& rs) {
+    const FrameLod lod = level_of_detail(shot, view, rs);
+    const Camera& cam = view.camera;
+    std::vector<std::vector<float>> per_item(shot.item_count());
+    tbb::parallel_for(size_t{0}, per_item.size(), [&](size_t i) {
+        for_each_particle(shot, i, [&](SpriteKind kind, size_t j, const RayOrigin& o) {
+            const ParticleLod l = particle_lod(shot, lod, i, kind, j, o.world);
+            const Projection pr = project(cam, l.world);
+            const bool on =
+                pr.in_front && pr.x >= 0 && pr.y >= 0 && pr.x < cam.width && pr.y < cam.height;
+            per_item[i].push_back(on ? (l.gone() ? 0.0f : l.presence()) : -1.0f);
+        });
+    });
+    std::vector<float> all;
+    for (auto& v : per_item) all.insert(all.end(), v.begin(), v.end());
+    return all;
+}
+
+// Particle keys in the order `presences` lists them.
+std::vector<uint64_t> particle_keys(const Shot& shot) {
+    std::vector<uint64_t> keys;
+    for (size_t i = 0; i < shot.item_count(); ++i)
+        for_each_particle(shot, i, [&](SpriteKind kind, size_t j, const RayOrigin&) {
+            Sprite sp;
+            sp.item = static_cast<uint32_t>(i), sp.kind = kind;
+            sp.particle = static_cast<uint32_t>(j);
+            keys.push_back(sprite_key(sp));
+        });
+    return keys;
+}
+
+// Covered area (share of the frame) and mean L* over it, weighted by coverage.
+void area_and_lightness(const Traced& t, double& area, double& lightness) {
+    const auto& through = t.report.trace->through;
+    double a = 0, l = 0;
+    for (size_t p = 0; p < through.size(); ++p) {
+        const double cover = 1.0 - through[p];
+        if (!(cover > 0)) continue;
+        const float* c = &t.frame.rgba[4 * p];
+        const double y = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+        const double f = y > 216.0 / 24389.0 ? std::cbrt(y) : (24389.0 / 27.0 * y + 16) / 116;
+        a += cover;
+        l += cover * (116 * f - 16);
+    }
+    area = a / static_cast<double>(std::max<size_t>(through.size(), 1));
+    lightness = a > 0 ? l / a : 0;
+}
+
+}  // namespace
+
+CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& frames,
+                                  const FrameSettings& base,
+                                  const std::function<void(int)>& progress) {
+    CoherenceReport rep;
+    const SceneDesc& scene = shot.scene;
+    if (frames.empty()) return rep;
+    FrameSettings on = base;
+    on.trace = true;
+    const FrameView first_view = view_at(scene, frame_time(frames.front(), scene.fps));
+    FrameSettings frozen = on, off = on, boiling = on;
+    frozen.lod_view = &first_view;
+    off.render.level_of_detail = false;
+    rep.lod = plan_frame(shot, on).lod;
+
+    const std::vector<uint64_t> keys = particle_keys(shot);
+    Traced p_on, p_frozen, p_off, p_boil;
+    PairSet p_pairs;
+    std::vector<float> p_presence;
+    double p_area_on = 0, p_area_off = 0;
+    Sum f_on, f_frozen, f_boil;
+    for (size_t n = 0; n < frames.size(); ++n) {
+        const FrameView view = view_at(scene, frame_time(frames[n], scene.fps));
+        boiling.noise_reseed = static_cast<uint32_t>(frames[n]) + 1;
+        Traced c_on = paint_traced(shot, view, on), c_frozen = paint_traced(shot, view, frozen);
+        Traced c_off = paint_traced(shot, view, off), c_boil = paint_traced(shot, view, boiling);
+        PairSet c_pairs = order_pairs(c_on);
+        std::vector<float> c_presence = presences(shot, view, on.render);
+        double area_on, l_on, area_off, l_off;
+        area_and_lightness(c_on, area_on, l_on);
+        area_and_lightness(c_off, area_off, l_off);
+        const auto& sprites_on = c_on.report.trace->sprites;
+        rep.sprites_on += sprites_on.size();
+        rep.sprites_off += c_off.report.trace->sprites.size();
+        rep.fragments_on += c_on.report.fragments;
+        rep.fragments_off += c_off.report.fragments;
+        if (area_off > 1e-6) {
+            rep.area_difference = std::max(rep.area_difference, std::abs(area_on / area_off - 1));
+            rep.lightness_difference = std::max(rep.lightness_difference, std::abs(l_on - l_off));
+        }
+        if (n > 0) {
+            auto add = [](Sum& to, const Sum& s) { to.total += s.total, to.count += s.count; };
+            add(f_on, flicker_between(p_on, c_on));
+            add(f_frozen, flicker_between(p_frozen, c_frozen));
+            add(f_boil, flicker_between(p_boil, c_boil));
+            rep.order_swaps += swaps_between(p_pairs, c_pairs);
+            for (size_t k = 0; k < c_presence.size(); ++k) {
+                const float a = p_presence[k], b = c_presence[k];
+                if (a < 0 || b < 0) continue;  // off screen in one of the two
+                rep.steepest_fade = std::max(rep.steepest_fade, double(std::abs(a - b)));
+                if (std::abs(a - b) > 1.0f / 3.0f) {
+                    ++rep.pops;
+                } else if (a > 1.0f / 3.0f && b > 1.0f / 3.0f) {
+                    const bool was = p_on.index.count(keys[k]) > 0;
+                    const bool is = c_on.index.count(keys[k]) > 0;
+                    rep.cull_pops += was != is;
+                }
+            }
+            if (p_area_on > 1e-6 && p_area_off > 1e-6)
+                rep.area_step =
+                    std::max(rep.area_step, std::abs(area_on / p_area_on - area_off / p_area_off));
+        }
+        p_on = std::move(c_on), p_frozen = std::move(c_frozen);
+        p_off = std::move(c_off), p_boil = std::move(c_boil);
+        p_pairs = std::move(c_pairs);
+        p_presence = std::move(c_presence);
+        p_area_on = area_on, p_area_off = area_off;
+        ++rep.frames;
+        if (progress) progress(rep.frames);
+    }
+    auto mean = [](const Sum& s) { return s.count ? s.total / static_cast<double>(s.count) : 0.0; };
+    rep.flicker = mean(f_on), rep.flicker_floor = mean(f_frozen);
+    rep.flicker_boiling = mean(f_boil);
+    return rep;
+}
+
+}  // namespace pleinair
