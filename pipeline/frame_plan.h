@@ -35,6 +35,9 @@ struct FrameView {
     Camera camera;
     glm::dvec3 sun_direction{0, 1, 0};  // towards the sun, unit
     DistanceCircles circles;            // carried by the camera (IV.6)
+    // On a camera track, at `time` seconds: the level of detail replays the track up to it.
+    bool on_track = false;
+    double time = 0;
 };
 
 // How a frame learns each particle's light.

@@ -8,7 +8,9 @@
 #define GLM_ENABLE_EXPERIMENTAL
 #include <glm/gtx/norm.hpp>
 
+#include "pipeline/camera_track.h"
 #include "pipeline/frame_plan.h"
+#include "pipeline/paint.h"
 #include "pipeline/shot.h"
 #include "shading/curves.h"
 #include "shading/stroke_shader.h"
@@ -26,8 +28,29 @@ float leaf_fade(float value, float fade_begin, float fade_end, float g) {
 
 float bark_fade(float trunk_value, int limb_level, float label, float g) {
     if (limb_level < 2) return 1.0f;
-    const float begin = 0.6f * label_hash(label, 3);
-    return leaf_fade(trunk_value, begin, begin + 0.4f, g);
+    const float begin = (1.0f - kBarkFadeSpan) * label_hash(label, 3);
+    return leaf_fade(trunk_value, begin, begin + kBarkFadeSpan, g);
+}
+
+double max_fade_rate(double shortest_fade, float g) {
+    // The steepest slope of the eased fade, sampled (gain's slope is unbounded at the ends
+    // below g = 0.5, so the bound is found, not derived).
+    constexpr int kSteps = 256;
+    double steepest = 1;
+    for (int i = 0; i < kSteps; ++i)
+        steepest = std::max(
+            steepest, double(gain((i + 1.0f) / kSteps, g) - gain(float(i) / kSteps, g)) * kSteps);
+    return std::max(shortest_fade, 0.02) / (kMinFadeFrames * steepest);
+}
+
+std::vector<FrameView> replay_path(const SceneDesc& scene, const FrameView& view) {
+    if (!view.on_track) return {view};
+    std::vector<FrameView> path;
+    const int first = track_first_frame(scene.camera_track, scene.fps);
+    for (int f = first; frame_time(f, scene.fps) < view.time; ++f)
+        path.push_back(view_at(scene, frame_time(f, scene.fps)));
+    path.push_back(view);
+    return path;
 }
 
 float near_field_fade(float near_value, float center_distance, float label, float g) {
@@ -96,14 +119,27 @@ void radial_spread(const LeafParticles& L, const glm::vec3& center, float gain, 
     // by bisection, brings the survivors' RMS distance to the whole crown's.
     const std::vector<glm::vec2> base = t.radial;
     const double target = ar / aw;
+    // The survivors' distances, bin coordinates and fades, once: the search only moves them.
+    struct Survivor {
+        float r, e, a, alpha;
+    };
+    std::vector<Survivor> kept;
+    for (size_t j = 0; j < L.size(); ++j) {
+        const float alpha = leaf_fade(t.leaf, L.fade_begin[j], L.fade_end[j], gain);
+        const glm::vec3 v = L.position[j] - center;
+        const float r = glm::length(v);
+        if (!(alpha > 0) || !(r > 0)) continue;
+        Survivor s{r, 0, 0, alpha};
+        direction_bins(v, r, s.e, s.a);
+        kept.push_back(s);
+    }
     auto rms_with = [&](double k) {
         for (size_t i = 0; i < base.size(); ++i)
             t.radial[i].x = static_cast<float>(std::max(0.05, 1.0 - (1.0 - base[i].x) * k));
         double moved = 0;
-        for (size_t j = 0; j < L.size(); ++j) {
-            const double alpha = leaf_fade(t.leaf, L.fade_begin[j], L.fade_end[j], gain);
-            if (alpha > 0)
-                moved += alpha * glm::length2(glm::dvec3(spread_leaf(t, L.position[j]) - center));
+        for (const Survivor& s : kept) {
+            const double m = s.r * spread_factor(t, s.r, s.e, s.a);
+            moved += s.alpha * m * m;
         }
         return moved / kw;
     };
@@ -128,6 +164,10 @@ glm::vec3 spread_leaf(const TreeLod& t, const glm::vec3& p) {
     if (!(r > 0)) return p;
     float e, a;
     direction_bins(v, r, e, a);
+    return t.center + v * spread_factor(t, r, e, a);
+}
+
+float spread_factor(const TreeLod& t, float r, float e, float a) {
     e = std::clamp(e, 0.0f, kElevationBins - 1.0f);
     const int e0 = std::min(static_cast<int>(e), kElevationBins - 2);
     const float fe = e - e0;
@@ -140,9 +180,8 @@ glm::vec3 spread_leaf(const TreeLod& t, const glm::vec3& p) {
                         (at(e0 + 1, a0) * (1 - fa) + at(e0 + 1, a1) * fa) * fe;
     // r -> R (r / R)^gamma inside the bins' extent R: survivors move out, the silhouette does
     // not. Near the centre the move is bounded by max_spread.
-    if (!(r < g.y) || !(g.x < 1.0f)) return p;
-    const float factor = std::min(t.max_spread, std::pow(r / g.y, g.x - 1.0f));
-    return t.center + v * factor;
+    if (!(r < g.y) || !(g.x < 1.0f)) return 1.0f;
+    return std::min(t.max_spread, std::pow(r / g.y, g.x - 1.0f));
 }
 
 ParticleLod particle_lod(const Shot& shot, const FrameLod& lod, size_t item, SpriteKind kind,
@@ -213,14 +252,32 @@ FrameLod level_of_detail(const Shot& shot, const FrameView& view, const RenderSe
     if (!lod.leaves && !lod.trunks) return lod;
     const std::vector<BuiltTree>& trees = *shot.trees;
     lod.trees.resize(trees.size());
+    const std::vector<FrameView> path = replay_path(shot.scene, view);
     const float max_growth = std::max(1.0f, rs.max_leaf_growth);
     tbb::parallel_for(size_t{0}, trees.size(), [&](size_t i) {
         const BuiltTree& b = trees[i];
         TreeLod& t = lod.trees[i];
-        const double depth = view_depth(view.camera, shot.placements[i].place(b.tree.center));
-        if (lod.trunks) t.trunk = circle_value(depth, c.trunk_near, c.trunk_far);
+        const glm::dvec3 center = shot.placements[i].place(b.tree.center);
+        const FadeParams& fp = shot.scene.families[b.family].params.leaves.fade;
+        const double leaf_rate = max_fade_rate(std::max(fp.length_min, fp.length.lo), rs.fade_gain);
+        const double trunk_rate = max_fade_rate(kBarkFadeSpan, rs.fade_gain);
+        // Replayed along the track from its first frame, each step bounded so that no fade
+        // completes in fewer than kMinFadeFrames frames, however fast the camera goes.
+        for (size_t k = 0; k < path.size(); ++k) {
+            const DistanceCircles& pc = path[k].circles;
+            const double depth = view_depth(path[k].camera, center);
+            const float leaf = circle_value(depth, pc.leaf_near, pc.leaf_far);
+            const float trunk = circle_value(depth, pc.trunk_near, pc.trunk_far);
+            if (k == 0) {
+                t.leaf = leaf, t.trunk = trunk;
+                continue;
+            }
+            t.leaf += static_cast<float>(std::clamp<double>(leaf - t.leaf, -leaf_rate, leaf_rate));
+            t.trunk +=
+                static_cast<float>(std::clamp<double>(trunk - t.trunk, -trunk_rate, trunk_rate));
+        }
+        if (!lod.trunks) t.trunk = 0;
         if (!lod.leaves) return;
-        t.leaf = circle_value(depth, c.leaf_near, c.leaf_far);
         const LeafParticles& L = b.tree.leaves;
         if (L.size() == 0 || t.leaf <= 0) return;
         // Interior darkening stands for shade cast by outer leaves (IV.4.1); as they fade it

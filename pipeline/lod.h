@@ -10,17 +10,20 @@
 
 #include "pipeline/camera.h"
 #include "pipeline/distance_circles.h"
+#include "pipeline/frame_plan.h"
 #include "pipeline/materials.h"
 #include "pipeline/settings.h"
 
 namespace pleinair {
 
 struct Shot;
-struct FrameView;
+struct SceneDesc;
 
 struct TreeLod {
-    float leaf = 0;    // the leaves' distance value at the tree's centre: 0 full detail, 1 least
-    float trunk = 0;   // the bark's: strokes on twigs fade towards 1
+    // The leaves' distance value at the tree's centre (0 full detail, 1 least), and the bark's
+    // (strokes on twigs fade towards 1): replayed along the track (replay_path).
+    float leaf = 0;
+    float trunk = 0;
     float kept = 1;    // the mean opacity of its leaves at `leaf` (Cook et al.'s u)
     float growth = 1;  // each surviving leaf stroke's linear scale: 1 / sqrt(kept), bounded
     // How much the interior darkening weakens (the shader's lod_distance): as much as keeps the
@@ -65,6 +68,23 @@ constexpr int kElevationBins = 6, kAzimuthBins = 12;
 // Where a surviving leaf at p (tree-local) is painted: moved along its direction from the
 // centre by the bins' ratios, interpolated bilinearly over directions so no leaf jumps.
 glm::vec3 spread_leaf(const TreeLod& t, const glm::vec3& p);
+// The same as a factor on the distance r from the centre, in bin coordinates (e, a).
+float spread_factor(const TreeLod& t, float r, float e, float a);
+
+// No leaf or bark fade completes in fewer frames than this, however fast the camera moves.
+constexpr int kMinFadeFrames = 4;
+// The span of the trunk distance value over which one twig's bark stroke fades.
+constexpr float kBarkFadeSpan = 0.4f;
+
+// The most a tree's distance value may change in one frame so that a fade of length
+// `shortest_fade` (eased by gain g) takes at least kMinFadeFrames frames.
+double max_fade_rate(double shortest_fade, float g);
+
+// The views a tree's distance values are replayed along to reach `view` (DESIGN.md: history is
+// replayed from the camera track, never carried from the frame painted before): the track's
+// frames from its first up to the view's time, then the view itself; the view alone for a
+// still.
+std::vector<FrameView> replay_path(const SceneDesc& scene, const FrameView& view);
 
 // A leaf's opacity at its tree's distance value: 1 up to fade_begin, 0 from fade_end, eased
 // between by Perlin's gain (IV.6); a step at fade_begin when the two are equal.

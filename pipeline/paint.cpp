@@ -30,6 +30,8 @@ FrameView view_at(const SceneDesc& scene, double t) {
             !why.empty())
             throw std::runtime_error("the camera track at " + std::to_string(t) + " s: " + why);
         v.circles = circles_of(key, scene.circles);
+        v.on_track = true;
+        v.time = t;
     }
     if (!scene.sun_track.empty()) v.sun_direction = sun_at(scene.sun_track, t);
     return v;

@@ -284,7 +284,7 @@ void visit_scene(SceneDesc& s, V& v) {
                   "Follow the camera's distance circles (IV.6); false paints every tree at full "
                   "detail whatever the circles, to compare.");
         v.real("fade_gain", r.fade_gain, {0.01, 0.99}, "",
-               "Perlin gain on each leaf's and stroke's level-of-detail fade: below 0.5 it eases "
+               "Perlin gain on each leaf's and stroke's level-of-detail fade: above 0.5 it eases "
                "in and out (the thesis's \"slight gain\"), 0.5 is linear.");
         v.real("max_leaf_growth", r.max_leaf_growth, {1, 10}, "",
                "Most a surviving leaf stroke grows (linear size) to keep its tree's coverage "

@@ -35,7 +35,7 @@ struct RenderSettings {
     float coverage_cutoff = 1.0f / 2048.0f;
     // Level of detail (IV.6), when the camera has distance circles.
     bool level_of_detail = true;
-    float fade_gain = 0.4f;        // Perlin gain on a fade: eases in and out
+    float fade_gain = 0.6f;        // Perlin gain on a fade: above 0.5 it eases in and out
     float max_leaf_growth = 2.5f;  // survivors grow at most this much (linear)
 };
 

@@ -18,7 +18,8 @@ inline float bias(float x, float b) {
     return std::pow(x, std::log(b) / std::log(0.5f));
 }
 
-// Perlin's gain: an S-curve (g < 0.5) or its inverse (g > 0.5) through (0.5, 0.5).
+// Perlin's gain through (0.5, 0.5): an S-curve, flat at both ends and steep in the middle, for
+// g > 0.5; its inverse, steep at the ends, for g < 0.5.
 inline float gain(float x, float g) {
     x = clamp01(x);
     if (x < 0.5f) return 0.5f * bias(2.0f * x, 1.0f - g);

@@ -181,7 +181,8 @@ TEST(LevelOfDetail, SurvivorsFillTheCrownsExtent) {
     const glm::vec3 c = (*shot.trees)[0].tree.center;
     double all = 0, kept = 0, moved = 0, w = 0;
     for (size_t j = 0; j < L.size(); ++j) {
-        const double a = leaf_fade(t.leaf, L.fade_begin[j], L.fade_end[j], 0.4f);
+        const double a =
+            leaf_fade(t.leaf, L.fade_begin[j], L.fade_end[j], RenderSettings{}.fade_gain);
         const double r = glm::length(L.position[j] - c);
         all += r * r;
         kept += a * r * r;

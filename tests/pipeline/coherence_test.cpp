@@ -1,0 +1,59 @@
+// The coherence bench's measures on shots whose answers are known.
+#include "pipeline/coherence.h"
+
+#include <gtest/gtest.h>
+
+#include "pipeline/paint.h"
+#include "pipeline/scene.h"
+#include "pipeline/shot.h"
+
+namespace pleinair {
+namespace {
+
+// One oak; the camera's track given, with circles near enough that the oak fades.
+Shot oak_shot(const std::string& track) {
+    return build_shot(parse_scene(R"({"fps": 12,
+        "camera": {"width": 96, "height": 64, "fov": 40,
+                   "leaf_near": 10, "leaf_far": 60, "trunk_near": 10, "trunk_far": 60,
+                   "track": )" + track +
+                                      R"(},
+        "families": {"oak": {"preset": "oak"}},
+        "trees": [{"family": "oak", "seed": 1, "position": [0, 0, 0]}]})",
+                                  "oak"));
+}
+
+TEST(Coherence, AStillCameraWithStillCirclesIsStill) {
+    const Shot shot = oak_shot(R"([{"time": 0, "position": [0, 7, 40], "look_at": [0, 7, 0]},
+                                   {"time": 0.5, "position": [0, 7, 40], "look_at": [0, 7, 0]}])");
+    const CoherenceReport r =
+        measure_coherence(shot, {1, 2, 3, 4}, scene_frame_settings(shot.scene));
+    EXPECT_EQ(r.frames, 4);
+    EXPECT_TRUE(r.lod);
+    EXPECT_EQ(r.flicker, 0.0);
+    EXPECT_EQ(r.flicker_floor, 0.0);
+    EXPECT_GT(r.flicker_boiling, 0.01);  // reseeded noise changes every stroke
+    EXPECT_EQ(r.pops, 0u);
+    EXPECT_EQ(r.steepest_fade, 0.0);
+    EXPECT_EQ(r.cull_pops, 0u);
+    EXPECT_EQ(r.order_swaps, 0u);
+    EXPECT_EQ(r.area_step, 0.0);
+    EXPECT_GT(r.sprites_off, r.sprites_on);  // 40 m: outer leaves have faded
+}
+
+TEST(Coherence, ARecedingTreeFadesOverFramesAndKeepsItsSilhouette) {
+    const Shot shot = oak_shot(R"([{"time": 0, "position": [0, 7, 15], "look_at": [0, 7, 0]},
+                                   {"time": 2, "position": [0, 7, 70], "look_at": [0, 7, 0]}])");
+    std::vector<int> frames;
+    for (int f = 1; f <= 25; ++f) frames.push_back(f);
+    const CoherenceReport r = measure_coherence(shot, frames, scene_frame_settings(shot.scene));
+    EXPECT_EQ(r.pops, 0u);
+    EXPECT_GT(r.steepest_fade, 0.0);   // leaves do fade ...
+    EXPECT_LE(r.steepest_fade, 0.25);  // ... each over at least 4 frames
+    EXPECT_LT(r.area_difference, 0.15);
+    EXPECT_LT(r.lightness_difference, 3.0);
+    EXPECT_GT(r.flicker, 0.0);
+    EXPECT_LT(r.flicker, r.flicker_boiling);
+}
+
+}  // namespace
+}  // namespace pleinair
