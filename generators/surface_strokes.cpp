@@ -119,6 +119,33 @@ void emit_surface_strokes(const GridSurface& g, const SurfaceStrokeParams& p, ui
         }
 }
 
+void emit_cell_strokes(const std::vector<glm::ivec2>& cells, double cell,
+                       const SurfaceStrokeParams& p, uint64_t seed, uint64_t surface_key,
+                       const GroundAt& ground, SurfaceParticles& out) {
+    if (!(cell > 0) || p.particles_per_cluster < 1) return;
+    for (const glm::ivec2& c : cells) {
+        const uint64_t cx = static_cast<uint32_t>(c.x), cz = static_cast<uint32_t>(c.y);
+        Rng rng = make_rng(seed, Purpose::kSurface, surface_key, cx, cz);
+        for (int k = 0; k < p.particles_per_cluster; ++k) {
+            const double x = (c.x + rand1(rng)) * cell, z = (c.y + rand1(rng)) * cell;
+            // A label in (0, 1) from the stroke's own key (24 bits).
+            const uint64_t h = hash_keys(seed, static_cast<uint64_t>(Purpose::kSurface),
+                                         surface_key, cx, cz, static_cast<uint64_t>(k));
+            const float label = (static_cast<float>(h >> 40) + 0.5f) / 16777216.0f;
+            glm::vec3 pos, n;
+            const bool there = ground(x, z, pos, n);
+            const size_t before = out.size();
+            emit_one(rng, p, pos, n, {0.0f, 0.0f}, label, out);  // draws the same either way
+            if (!there) {
+                out.truncate(before);
+                continue;
+            }
+            out.height_code[before] = encode_unorm(0.5f + 0.5f * out.height(before));
+            out.fade_code[before] = (2u * 16384u) | ((3u * 16384u) << 16);
+        }
+    }
+}
+
 void emit_mesh_strokes(const QuadMesh& mesh, const SurfaceStrokeParams& p, uint64_t seed,
                        uint64_t surface_key, SurfaceParticles& out) {
     if (p.particle_spans_u < 1 || p.particle_spans_v < 1 || p.particles_per_cluster < 1) return;

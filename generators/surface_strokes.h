@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <glm/ext/vector_int2.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <vector>
@@ -95,6 +96,19 @@ using StrokeKeep = std::function<bool(SurfaceParticles&, size_t i)>;
 void emit_surface_strokes(const GridSurface& surface, const SurfaceStrokeParams& params,
                           uint64_t seed, uint64_t surface_key, SurfaceParticles& out,
                           const StrokeKeep& keep = {}, int first_row = 0, int end_row = -1);
+
+// Where a world grid cell's strokes stand: the ground's point and unit normal at (x, z), or
+// false where there is none (under water).
+using GroundAt = std::function<bool(double x, double z, glm::vec3& position, glm::vec3& normal)>;
+
+// Strokes on a world grid of square cells of side `cell` in (x, z), `params.particles_per_cluster`
+// in each listed cell, keyed by (seed, surface_key, cell x, cell z): a cell's strokes are the
+// same whichever other cells are emitted, so a region can grow without changing the rest. Each
+// stroke's label comes from its key, and none fades with distance (fade_code as a base
+// stroke's); heights lie in the upper half, as detail strokes on top of the surface's own.
+void emit_cell_strokes(const std::vector<glm::ivec2>& cells, double cell,
+                       const SurfaceStrokeParams& params, uint64_t seed, uint64_t surface_key,
+                       const GroundAt& ground, SurfaceParticles& out);
 
 // The same over a quad mesh (rocks, banks): every face is a bilinear patch divided into the
 // params' spans; streams keyed by (seed, surface_key, face, span u, span v).

@@ -5,15 +5,88 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 #include "generators/rock.h"
+#include "pipeline/camera_track.h"
 #include "shading/noise.h"
 
 namespace pleinair {
 
 namespace {
 
-constexpr uint64_t kTerrainKey = 1, kWaterKey = 2, kRockKey = 100;
+constexpr uint64_t kTerrainKey = 1, kWaterKey = 2, kNearKey = 3, kRockKey = 100;
+
+// Near-field strokes are this much smaller than the terrain's own, and a cell of their grid
+// (which holds as many as a section of the terrain) half as wide as a terrain stroke.
+constexpr float kNearStrokeScale = 0.25f;
+constexpr double kNearCellScale = 0.5;
+
+// The largest near-field circle the camera carries anywhere, and the ground points (x, z) it
+// passes over: the still camera's, or each frame's along the track.
+double near_field_path(const SceneDesc& s, std::vector<glm::dvec2>& eyes) {
+    double near = s.circles.near_field;
+    for (const CameraKey& k : s.camera_track.keys) near = std::max(near, k.near_field);
+    if (!(near > 0)) return 0;
+    if (s.camera_track.keys.empty()) {
+        eyes.push_back({s.camera_params.position.x, s.camera_params.position.z});
+        return near;
+    }
+    const int first = track_first_frame(s.camera_track, s.fps);
+    const int last = track_last_frame(s.camera_track, s.fps);
+    for (int f = first; f <= last; ++f) {
+        const glm::dvec3 p = track_at(s.camera_track, frame_time(f, s.fps)).position;
+        eyes.push_back({p.x, p.z});
+    }
+    return near;
+}
+
+// The near field's detail strokes: on a world grid of cells half a terrain stroke wide, those
+// within 1.2 near-field radii of any eye on the camera's path, in the order of their cells.
+void emit_near_field(const SceneDesc& s, const SurfaceStrokeParams& tp, float size,
+                     BuiltLandscape& out) {
+    std::vector<glm::dvec2> eyes;
+    const double near = near_field_path(s, eyes);
+    if (!(near > 0)) return;
+    const TerrainDesc& t = s.terrain;
+    const double cell = kNearCellScale * s.materials[t.material].shader.sprite_size * size;
+    if (!(cell > 0)) return;
+    const double reach = 1.2 * near;
+    std::set<std::pair<int, int>> picked;
+    for (const glm::dvec2& e : eyes) {
+        const int x0 = static_cast<int>(std::floor((e.x - reach) / cell));
+        const int x1 = static_cast<int>(std::floor((e.x + reach) / cell));
+        const int z0 = static_cast<int>(std::floor((e.y - reach) / cell));
+        const int z1 = static_cast<int>(std::floor((e.y + reach) / cell));
+        for (int x = x0; x <= x1; ++x)
+            for (int z = z0; z <= z1; ++z)
+                if (std::hypot((x + 0.5) * cell - e.x, (z + 0.5) * cell - e.y) < reach)
+                    picked.emplace(x, z);
+    }
+    std::vector<glm::ivec2> cells;
+    for (const auto& [x, z] : picked) cells.push_back({x, z});
+    const double level = s.water.present ? s.water.level : -1e300;
+    const GroundAt ground = [&](double x, double z, glm::vec3& pos, glm::vec3& n) {
+        const TerrainParams& p = t.params;
+        if (x < p.min.x || x > p.max.x || z < p.min.y || z > p.max.y) return false;
+        const double h = terrain_height(p, t.seed, x, z);
+        if (h < level - 0.02) return false;
+        const double d = 0.25 * cell;
+        const double dx = terrain_height(p, t.seed, x + d, z) - terrain_height(p, t.seed, x - d, z);
+        const double dz = terrain_height(p, t.seed, x, z + d) - terrain_height(p, t.seed, x, z - d);
+        pos = glm::vec3(glm::dvec3(x, h, z));
+        n = glm::vec3(glm::normalize(glm::dvec3(-dx, 2 * d, -dz)));
+        return true;
+    };
+    SurfaceParticles strokes;
+    emit_cell_strokes(cells, cell, tp, t.seed, kNearKey, ground, strokes);
+    for (size_t i = 0; i < strokes.size(); ++i)
+        strokes.material[i] =
+            static_cast<uint16_t>(terrain_material_at(s, glm::dvec3(strokes.position[i])));
+    out.near_chunk = out.chunks.size();
+    out.chunks.push_back(std::move(strokes));
+    out.chunk_size.push_back(size * kNearStrokeScale);
+}
 
 // The scene's stroke parameters with the material's detail threshold and the density applied.
 SurfaceStrokeParams strokes_for(const SurfaceStrokeParams& in, const Material& m, uint32_t index,
@@ -101,6 +174,7 @@ BuiltLandscape build_landscape(const SceneDesc& s) {
         p.material[i] = static_cast<uint16_t>(terrain_material_at(s, glm::dvec3(ground)));
         return true;
     });
+    emit_near_field(s, tp, size, out);
 
     if (s.water.present) {
         out.has_water = true;

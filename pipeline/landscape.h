@@ -21,6 +21,10 @@ struct BuiltLandscape {
     // SceneDesc::materials.
     std::vector<SurfaceParticles> chunks;
     std::vector<float> chunk_size;  // each chunk's sprite size factor after surface_density
+    // The near field's chunk (V.3): smaller detail strokes on the ground wherever the camera
+    // comes within its near-field circle; they appear, one by one, as it approaches. None: ~0.
+    size_t near_chunk = ~size_t{0};
+    bool is_near(size_t chunk) const { return chunk == near_chunk; }
     size_t stroke_count() const;
     // All strokes in one array (tests and tools; the painter reads the chunks).
     SurfaceParticles all_strokes() const;
@@ -28,7 +32,8 @@ struct BuiltLandscape {
 
 // Pure in the scene: terrain strokes take their material from noise and the bank mask and are
 // dropped under water; water strokes only where the ground lies below the level.
-// render.surface_density scales the particles per cluster.
+// render.surface_density scales the particles per cluster. A camera with a near field (on
+// `camera` or its track's keys) adds the near field's chunk along its path.
 BuiltLandscape build_landscape(const SceneDesc& scene);
 
 // The terrain's material at a world point: the noise picks the second material, a region its

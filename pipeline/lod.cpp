@@ -191,10 +191,23 @@ ParticleLod particle_lod(const Shot& shot, const FrameLod& lod, size_t item, Spr
     out.world = world;
     const std::vector<BuiltTree>& trees = *shot.trees;
     if (kind == SpriteKind::kSurface) {
-        const SurfaceParticles& S = shot.land->chunks[item - trees.size()];
+        const size_t chunk = item - trees.size();
+        const SurfaceParticles& S = shot.land->chunks[chunk];
+        if (shot.land->is_near(chunk)) {
+            // The near field's detail strokes appear one by one as the camera approaches, each
+            // from its own threshold (drawn from its label), never from a count.
+            if (!lod.near_field) return out.fade = 0, out;
+            const float nf = near_field_value(view_depth(cam, world), lod.circles.near_field);
+            const float from = 0.75f * label_hash(S.label[j], 5);
+            out.fade = 1.0f - leaf_fade(nf, from, from + 0.25f, lod.fade_gain);
+            return out;
+        }
+        const double z = view_depth(cam, world);
+        // In the near field the surface's own strokes get smaller, as the leaves do, so the
+        // foreground is not a few large soft blobs; the near field's strokes fill in.
+        if (lod.near_field) out.scale = near_field_scale(near_field_value(z, lod.circles.near_field));
         const float fb = S.fade_begin(j);
         if (fb > 1.0f) return out;  // a base stroke: it would leave a hole
-        const double z = view_depth(cam, world);
         const DistanceCircles& c = lod.circles;
         const Atmosphere& a = shot.scene.atmosphere;
         const float dv = lod.surfaces ? circle_value(z, c.leaf_near, c.leaf_far)
@@ -215,9 +228,13 @@ ParticleLod particle_lod(const Shot& shot, const FrameLod& lod, size_t item, Spr
     if (lod.leaves) {
         out.fade = leaf_fade(t.leaf, L.fade_begin[j], L.fade_end[j], lod.fade_gain);
         out.lod_distance = t.darkening_lift;
+        // The faded leaves' casters still stand in the sun's scene (built once): the share of
+        // the crown that is gone no longer shades the survivors.
+        out.shadow_lift = 1.0f - t.kept;
         if (out.gone()) return out;
         if (t.leaf > 0) {
             out.scale = t.growth;
+            out.growth = t.growth;
             out.world = shot.placements[item].place(spread_leaf(t, L.position[j]));
             out.moved = true;
         }

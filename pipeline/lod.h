@@ -114,6 +114,9 @@ struct ParticleLod {
     float thin = 1;          // the near field's size factor alone
     float scale = 1;         // the stroke's size on screen: growth, near field
     float lod_distance = 0;  // how much its tree's interior darkening weakens
+    float growth = 1;        // a survivor's growth (its tree's)
+    // How much of the sun's shadow on it is lifted: the shadow of leaves that have faded.
+    float shadow_lift = 0;
     bool moved = false;      // a survivor spread to its crown: painted at `world`
     glm::dvec3 world{0.0};
     // How much of the stroke is there: what the coherence bench follows from frame to frame.
@@ -124,7 +127,8 @@ struct ParticleLod {
 // The one rule for a particle (item, kind, index j, at `world`) of the shot: leaves fade by
 // their thresholds, grow and spread; twigs' bark strokes cross-fade; leaves in the near field
 // thin; surface detail strokes fade by their own depth, in the leaf circles when the camera
-// carries them, in the atmosphere's range otherwise (IV.7).
+// carries them, in the atmosphere's range otherwise (IV.7); the near field's ground strokes
+// appear as the camera comes near them.
 ParticleLod particle_lod(const Shot& shot, const FrameLod& lod, size_t item, SpriteKind kind,
                          size_t j, const glm::dvec3& world);
 inline float near_field_scale(float near_value) { return 1.0f - 0.4f * near_value; }

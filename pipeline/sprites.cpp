@@ -32,6 +32,8 @@ struct SpriteInput {
     size_t index = 0;
     float lod_opacity = 1;   // the level of detail's fade (IV.6, IV.7)
     float lod_scale = 1;     // and growth, on screen after the smallest stroke's clamp
+    float lod_growth = 1;    // the survivors' growth alone
+    float shadow_lift = 0;   // how much of its shadow the level of detail lifts
     float lod_distance = 0;  // the tree's leaf distance value: interior darkening weakens
 };
 
@@ -124,6 +126,12 @@ void shade_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in,
     }
     out.kind = in.kind;
     if (!c.plan.sub_stroke) out.k.sub_amt = 0;
+    if (in.lod_growth > 1.0f) {
+        // A grown survivor's noise grows with it by the square root only: larger dabs, fewer
+        // of them (IV.6's lower frequencies), without the whole crown going soft.
+        const float f = std::sqrt(in.lod_growth);
+        out.k.frequ_s *= f, out.k.frequ_t *= f;
+    }
     if (c.plan.noise_reseed) {
         // Boiling, for the coherence bench: every stroke's noise moves each frame.
         const float shift = 256.0f * tree_hash01(c.plan.noise_reseed);
@@ -188,6 +196,8 @@ bool apply_lod(const SpriteContext& c, size_t item, size_t j, SpriteInput& in, R
     in.lod_opacity = l.fade;
     in.lod_scale = l.scale;
     in.lod_distance = l.lod_distance;
+    in.lod_growth = l.growth;
+    in.shadow_lift = l.shadow_lift;
     if (l.moved) o.world = in.world = l.world;
     return true;
 }
@@ -293,6 +303,7 @@ SpriteSet make_sprites(const SpriteStageInput& input) {
             else if (traced && !plan.fragment_shadows)
                 ++counters.shadow_rays.local(),
                     in.shadow = sun_light_at(*sun_rays, origin, c.sun, rs.shadows);
+            in.shadow += (1.0f - in.shadow) * in.shadow_lift;
             shade_sprite(c, mat, in, sp);
             if (plan.fragment_shadows) {
                 sp.grid = static_cast<int32_t>(out.grids.size());

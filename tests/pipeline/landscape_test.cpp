@@ -8,8 +8,11 @@
 
 #include <cmath>
 #include <cstring>
+#include <set>
+#include <tuple>
 
 #include "pipeline/image_io.h"
+#include "pipeline/lod.h"
 #include "pipeline/paint.h"
 
 namespace pleinair {
@@ -266,6 +269,89 @@ TEST(LandscapeHardCases, NoRoomForTreesDegenerateRockAndEmptyRegions) {
     BuiltLandscape d = build_landscape(dry);
     for (uint32_t m : d.all_strokes().material) EXPECT_NE(m, dry.water.material);
     expect_finite(paint(dry));
+}
+
+}  // namespace
+}  // namespace pleinair
+
+namespace pleinair {
+namespace {
+
+TEST(NearField, GroundStrokesAlongTheCameraPathKeyedByTheirCells) {
+    const BuiltLandscape none = build_landscape(parse_scene(landscape(kSun), "test"));
+    EXPECT_FALSE(none.is_near(0));
+    EXPECT_EQ(none.near_chunk, ~size_t{0});
+    const SceneDesc still = parse_scene(landscape(kSun), "test", {"/camera/near_field=8"});
+    const BuiltLandscape a = build_landscape(still);
+    ASSERT_LT(a.near_chunk, a.chunks.size());
+    const SurfaceParticles& na = a.chunks[a.near_chunk];
+    ASSERT_GT(na.size(), 100u);
+    EXPECT_LT(a.chunk_size[a.near_chunk], a.chunk_size[0]);  // smaller than the terrain's own
+    const double cell = 0.5 * still.materials[still.terrain.material].shader.sprite_size;
+    for (size_t i = 0; i < na.size(); ++i) {
+        const glm::vec3 p = na.position[i];
+        ASSERT_LT(std::hypot(p.x - 0.0, p.z - 40.0), 1.2 * 8 + 1.5 * cell);
+        // Never under the water (level 0), and on the ground.
+        const double ground = terrain_height(still.terrain.params, still.terrain.seed, p.x, p.z);
+        ASSERT_GE(ground, -0.02);
+        ASSERT_NEAR(p.y, ground, still.terrain.strokes.displacement_height + 1e-3);
+    }
+    // A track that walks on from the same place keeps every stroke the still had, bit for bit:
+    // a cell's strokes depend on its key alone.
+    SceneDesc walk = still;
+    CameraKey k0, k1;
+    k0.time = 0, k0.position = {0, 3, 40}, k0.look_at = {0, 4, -10};
+    k1.time = 1, k1.position = {0, 3, 30}, k1.look_at = {0, 4, -20};
+    walk.camera_track.keys = {k0, k1};
+    const BuiltLandscape b = build_landscape(walk);
+    const SurfaceParticles& nb = b.chunks.at(b.near_chunk);
+    EXPECT_GT(nb.size(), na.size());
+    std::set<std::tuple<float, float, float, float>> in_b;
+    for (size_t i = 0; i < nb.size(); ++i)
+        in_b.emplace(nb.position[i].x, nb.position[i].y, nb.position[i].z, nb.label[i]);
+    for (size_t i = 0; i < na.size(); ++i)
+        ASSERT_TRUE(in_b.count({na.position[i].x, na.position[i].y, na.position[i].z, na.label[i]}))
+            << i;
+}
+
+TEST(NearField, GroundStrokesAppearOneByOneAsTheCameraNears) {
+    const Shot shot = build_shot(parse_scene(landscape(kSun), "test", {"/camera/near_field=8"}));
+    const size_t item = shot.trees->size() + shot.land->near_chunk;
+    const SurfaceParticles& S = shot.land->chunks.at(shot.land->near_chunk);
+    RenderSettings rs;
+    std::vector<float> last(S.size(), -1.0f);
+    float total_last = 0;
+    for (double back : {12.0, 8.0, 5.0, 3.0, 1.0}) {
+        FrameView view = still_view(shot.scene);
+        CameraParams p = shot.scene.camera_params;
+        p.position = {0, 3, 40 - 8 + back};  // the strokes lie around z = 40
+        p.look_at = p.position + glm::dvec3(0, -0.5, -1);
+        ASSERT_EQ(make_camera(p, view.camera), "");
+        const FrameLod lod = level_of_detail(shot, view, rs);
+        float total = 0;
+        for (size_t j = 0; j < S.size(); ++j) {
+            const glm::dvec3 w(S.position[j]);
+            if (view_depth(view.camera, w) < 0.5) continue;  // behind, or under the camera
+            const float f = particle_lod(shot, lod, item, SpriteKind::kSurface, j, w).fade;
+            ASSERT_TRUE(f >= 0 && f <= 1);
+            if (last[j] >= 0) {
+                ASSERT_GE(f, last[j] - 1e-6f) << "a stroke faded as the camera came nearer";
+            }
+            last[j] = f;
+            total += f;
+        }
+        total_last = total;
+        // Level of detail off: none of them.
+        RenderSettings off = rs;
+        off.level_of_detail = false;
+        const FrameLod none = level_of_detail(shot, view, off);
+        for (size_t j = 0; j < S.size(); j += 7)
+            ASSERT_EQ(
+                particle_lod(shot, none, item, SpriteKind::kSurface, j, glm::dvec3(S.position[j]))
+                    .fade,
+                0.0f);
+    }
+    EXPECT_GT(total_last, 0.0f);
 }
 
 }  // namespace
