@@ -40,6 +40,12 @@ Traced paint_traced(const Shot& shot, const FrameView& view, const FrameSettings
     return t;
 }
 
+// How much of a particle's stroke a traced frame drew: its fade there, 0 if culled.
+float drawn(const Traced& t, uint64_t key) {
+    const auto found = t.index.find(key);
+    return found == t.index.end() ? 0.0f : t.report.trace->sprites[found->second].fade;
+}
+
 // The summed colour change along the strokes' motion from `prev` to `cur`, and the pixels it
 // was measured at.
 struct Sum {
@@ -215,9 +221,8 @@ CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& fram
                 if (std::abs(a - b) > 1.0f / 3.0f) {
                     ++rep.pops;
                 } else if (a > 1.0f / 3.0f && b > 1.0f / 3.0f) {
-                    const bool was = p_on.index.count(keys[k]) > 0;
-                    const bool is = c_on.index.count(keys[k]) > 0;
-                    rep.cull_pops += was != is;
+                    rep.cull_pops +=
+                        std::abs(drawn(p_on, keys[k]) - drawn(c_on, keys[k])) > 1.0f / 3.0f;
                 }
             }
             if (p_area_on > 1e-6 && p_area_off > 1e-6)

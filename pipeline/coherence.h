@@ -29,9 +29,10 @@ struct CoherenceReport {
     // The steepest change of a stroke's presence in one frame: at most 1/4 means every fade
     // takes at least 4 frames.
     double steepest_fade = 0;
-    // Strokes on screen and present in two consecutive frames, drawn in one and culled in the
-    // other (their centre crossed a silhouette, or they grew past the smallest size): a pop the
-    // level of detail does not cause.
+    // Strokes on screen and present in two consecutive frames whose drawn share changed by more
+    // than a third: culled in one and drawn in the other, or seen through more or fewer of
+    // their three visibility rays (a silhouette crossed): a pop the level of detail does not
+    // cause.
     uint64_t cull_pops = 0;
     // Pairs of strokes over 5% opaque, nearest and next nearest at some pixel with lightness
     // differing by more than 0.05, whose order was the other way round in the previous frame.

@@ -208,19 +208,28 @@ struct Counters {
     tbb::combinable<uint64_t> hidden{[] { return uint64_t{0}; }};
 };
 
-// Whether the camera sees the particle past the opaque surfaces (a sprite whose centre lies
-// behind a hill or a trunk is culled; the sprites in front paint over the silhouette).
-bool visible(const Shot& shot, const Camera& cam, const RayOrigin& o, Counters& n) {
-    if (!shot.view_rays) return true;
-    const glm::dvec3 from = o.lifted();
-    const glm::dvec3 to_eye = cam.eye - from;
-    const double dist = glm::length(to_eye);
-    if (!(dist > 0)) return true;
-    // Any hit short of the eye hides it: an occlusion query, cheaper than the nearest hit.
-    const bool seen = !shot.view_rays->occluded(
-        from, glm::vec3(to_eye / dist), static_cast<float>(dist) * 0.999f, o.surface_normal());
-    if (!seen) ++n.hidden.local();
-    return seen;
+// How much of the sprite the camera sees past the opaque surfaces, in thirds (none: it is
+// culled; the sprites in front paint over the silhouette).
+float visibility(const Shot& shot, const Camera& cam, const RayOrigin& o, const Sprite& sp,
+                 Counters& n) {
+    if (!shot.view_rays) return 1.0f;
+    // The particle and two points above it on the sprite (half way and at its top, back-
+    // projected to its depth), so a stroke rising from behind a crest or a trunk's silhouette
+    // shows a third at a time instead of popping whole when its centre crosses. Only upwards:
+    // below a ground stroke's centre lies the ground.
+    const double radius = std::max(sp.half_w, sp.half_l) * sp.depth / cam.focal_px;
+    int seen = 0;
+    for (double k : {0.0, 0.5, 1.0}) {
+        const glm::dvec3 from = o.lifted() + cam.up * (k * radius);
+        const glm::dvec3 to_eye = cam.eye - from;
+        const double dist = glm::length(to_eye);
+        // Any hit short of the eye hides it: an occlusion query, cheaper than the nearest hit.
+        seen += !(dist > 0) ||
+                !shot.view_rays->occluded(from, glm::vec3(to_eye / dist),
+                                          static_cast<float>(dist) * 0.999f, o.surface_normal());
+    }
+    if (seen == 0) ++n.hidden.local();
+    return static_cast<float>(seen) / 3.0f;
 }
 
 // The 4 x 4 grid of light over a sprite's footprint, back-projected at the particle's depth.
@@ -297,7 +306,9 @@ SpriteSet make_sprites(const SpriteStageInput& input) {
             Sprite sp;
             sp.item = static_cast<uint32_t>(i), sp.particle = static_cast<uint32_t>(j);
             if (!place_sprite(c, mat, in, sp)) return void(++out.culled);
-            if (!visible(shot, c.cam, o, counters)) return void(++out.culled);
+            const float seen = visibility(shot, c.cam, o, sp, counters);
+            if (!(seen > 0.0f)) return void(++out.culled);
+            sp.fade *= seen;
             if (plan.sun_light == SunLightSource::kShot)
                 in.shadow = shot.sun_light[i][slot];
             else if (traced && !plan.fragment_shadows)
