@@ -179,6 +179,28 @@ TEST(Sprites, EveryParticleIsASpriteOrCulled) {
     EXPECT_EQ(none.sprites.size(), 0u);
 }
 
+TEST(Sprites, PartlyHiddenStrokesAreDrawnByTheShareSeen) {
+    // Without circles a tree's strokes are whole, unless the camera sees only the top of them
+    // past a crest or a trunk: then a third or two (of three rays), never culled outright.
+    const Shot shot = build_shot(lit_scene());
+    const FrameSettings settings = scene_frame_settings(shot.scene);
+    const FramePlan plan = plan_frame(shot, settings);
+    const FrameView view = still_view(shot.scene);
+    const FrameLod lod = level_of_detail(shot, view, settings.render);
+    const SpriteSet set =
+        make_sprites({shot, view, plan, settings.render, lod, shot.sun_rays.get()});
+    size_t partial = 0;
+    for (const Sprite& sp : set.sprites) {
+        if (sp.kind == SpriteKind::kSurface) continue;  // detail strokes fade with distance
+        const bool third = std::abs(sp.fade - 1.0f / 3.0f) < 1e-6f;
+        const bool two = std::abs(sp.fade - 2.0f / 3.0f) < 1e-6f;
+        ASSERT_TRUE(sp.fade == 1.0f || third || two) << sp.fade;
+        partial += third || two;
+    }
+    EXPECT_GT(partial, 0u);
+    EXPECT_GT(set.hidden, 0u);
+}
+
 TEST(DepthOrder, BackToFrontByDistanceFromTheEyeWithTiesByIndex) {
     std::vector<Sprite> s(5);
     const float range[] = {1, 3, 3, 2, 3};
