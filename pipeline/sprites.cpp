@@ -218,23 +218,17 @@ float visibility(const Shot& shot, const Camera& cam, const RayOrigin& o, const 
     // shows a third at a time instead of popping whole when its centre crosses. Only upwards:
     // below a ground stroke's centre lies the ground.
     const double radius = std::max(sp.half_w, sp.half_l) * sp.depth / cam.focal_px;
-    auto seen_from = [&](double k) {
+    int seen = 0;
+    for (double k : {0.0, 0.5, 1.0}) {
         const glm::dvec3 from = o.lifted() + cam.up * (k * radius);
         const glm::dvec3 to_eye = cam.eye - from;
         const double dist = glm::length(to_eye);
         // Any hit short of the eye hides it: an occlusion query, cheaper than the nearest hit.
-        return !(dist > 0) ||
-               !shot.view_rays->occluded(from, glm::vec3(to_eye / dist),
-                                         static_cast<float>(dist) * 0.999f, o.surface_normal());
-    };
-    // The centre and the top first; the middle only when they disagree (a silhouette crosses
-    // the sprite), which is rare, so most sprites cost two rays.
-    const bool centre = seen_from(0.0), top = seen_from(1.0);
-    if (centre == top) {
-        if (!centre) ++n.hidden.local();
-        return centre ? 1.0f : 0.0f;
+        seen += !(dist > 0) ||
+                !shot.view_rays->occluded(from, glm::vec3(to_eye / dist),
+                                          static_cast<float>(dist) * 0.999f, o.surface_normal());
     }
-    const int seen = 1 + seen_from(0.5);
+    if (seen == 0) ++n.hidden.local();
     return static_cast<float>(seen) / 3.0f;
 }
 
