@@ -142,10 +142,7 @@ std::vector<uint64_t> particle_keys(const Shot& shot) {
     std::vector<uint64_t> keys;
     for (size_t i = 0; i < shot.item_count(); ++i)
         for_each_particle(shot, i, [&](SpriteKind kind, size_t j, const RayOrigin&) {
-            Sprite sp;
-            sp.item = static_cast<uint32_t>(i), sp.kind = kind;
-            sp.particle = static_cast<uint32_t>(j);
-            keys.push_back(sprite_key(sp));
+            keys.push_back(particle_key(static_cast<uint32_t>(i), kind, static_cast<uint32_t>(j)));
         });
     return keys;
 }

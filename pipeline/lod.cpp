@@ -72,8 +72,8 @@ void direction_bins(const glm::vec3& v, float r, float& e, float& a) {
 
 // The survivors' move, bin by bin: sums in double and in index order, so no thread count or
 // order can change a bit of it.
-void radial_spread(const LeafParticles& L, const glm::vec3& center, float gain, float max_growth,
-                   TreeLod& t) {
+void radial_spread(const LeafParticles& L, const std::vector<float>& fade, const glm::vec3& center,
+                   float max_growth, TreeLod& t) {
     constexpr int kBins = kElevationBins * kAzimuthBins;
     std::vector<double> all_w(kBins, 0.0), all_r2(kBins, 0.0), kept_w(kBins, 0.0),
         kept_r2(kBins, 0.0), extent(kBins, 0.0);
@@ -86,7 +86,7 @@ void radial_spread(const LeafParticles& L, const glm::vec3& center, float gain, 
         const int be = std::clamp(static_cast<int>(std::lround(e)), 0, kElevationBins - 1);
         const int ba = (static_cast<int>(std::lround(a)) + kAzimuthBins) % kAzimuthBins;
         const int bin = be * kAzimuthBins + ba;
-        const double alpha = leaf_fade(t.leaf, L.fade_begin[j], L.fade_end[j], gain);
+        const double alpha = fade[j];
         all_w[bin] += 1, all_r2[bin] += double(r) * r;
         kept_w[bin] += alpha, kept_r2[bin] += alpha * r * r;
         extent[bin] = std::max(extent[bin], double(r));
@@ -125,7 +125,7 @@ void radial_spread(const LeafParticles& L, const glm::vec3& center, float gain, 
     };
     std::vector<Survivor> kept;
     for (size_t j = 0; j < L.size(); ++j) {
-        const float alpha = leaf_fade(t.leaf, L.fade_begin[j], L.fade_end[j], gain);
+        const float alpha = fade[j];
         const glm::vec3 v = L.position[j] - center;
         const float r = glm::length(v);
         if (!(alpha > 0) || !(r > 0)) continue;
@@ -205,7 +205,8 @@ ParticleLod particle_lod(const Shot& shot, const FrameLod& lod, size_t item, Spr
         const double z = view_depth(cam, world);
         // In the near field the surface's own strokes get smaller, as the leaves do, so the
         // foreground is not a few large soft blobs; the near field's strokes fill in.
-        if (lod.near_field) out.scale = near_field_scale(near_field_value(z, lod.circles.near_field));
+        if (lod.near_field)
+            out.scale = near_field_scale(near_field_value(z, lod.circles.near_field));
         const float fb = S.fade_begin(j);
         if (fb > 1.0f) return out;  // a base stroke: it would leave a hole
         const DistanceCircles& c = lod.circles;
@@ -302,8 +303,10 @@ FrameLod level_of_detail(const Shot& shot, const FrameView& view, const RenderSe
         // A leaf's lightness is linear in the weakening w: l0 + (l1 - l0) w, at a typical N.L.
         const StrokeShaderParams& shader = shot.scene.families[b.family].leaf_shader;
         double sum = 0, full = 0, k0 = 0, k1 = 0;
+        std::vector<float> alpha(L.size());  // each leaf's fade, for the spread below too
         for (size_t j = 0; j < L.size(); ++j) {
-            const double a = leaf_fade(t.leaf, L.fade_begin[j], L.fade_end[j], rs.fade_gain);
+            alpha[j] = leaf_fade(t.leaf, L.fade_begin[j], L.fade_end[j], rs.fade_gain);
+            const double a = alpha[j];
             const double l0 =
                 stroke_lightness(shader, 0.5f, L.center_distance[j], L.branch_distance[j], 0.0f);
             const double l1 =
@@ -318,7 +321,7 @@ FrameLod level_of_detail(const Shot& shot, const FrameView& view, const RenderSe
         t.kept = static_cast<float>(sum / static_cast<double>(L.size()));
         const float floor = 1.0f / (max_growth * max_growth);
         t.growth = std::min(max_growth, 1.0f / std::sqrt(std::max(t.kept, floor)));
-        radial_spread(L, b.tree.center, rs.fade_gain, max_growth, t);
+        radial_spread(L, alpha, b.tree.center, max_growth, t);
     });
     return lod;
 }

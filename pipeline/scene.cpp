@@ -2,6 +2,7 @@
 // and trees lists, each resolved to presets with errors that name the scene file and key.
 #include "pipeline/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 
@@ -742,7 +743,12 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
     for (const char* key : {"families", "trees", "materials", "rocks", "groups"}) reader.claim(key);
     reader.finish();
     parse_tracks(doc, s, problems, plain);
-    for (Problem& p : validate_circles(s.circles, "/camera")) problems.push_back(std::move(p));
+    // A circle the reader already refused (out of range) is not reported twice.
+    const bool camera_read = std::none_of(problems.begin(), problems.end(), [](const Problem& p) {
+        return p.pointer.rfind("/camera/", 0) == 0 && p.pointer.rfind("/camera/track", 0) != 0;
+    });
+    if (camera_read)
+        for (Problem& p : validate_circles(s.circles, "/camera")) problems.push_back(std::move(p));
     parse_landscape(doc, source, s, problems, plain);
 
     if (std::string why = make_camera(s.camera_params, s.camera); !why.empty())

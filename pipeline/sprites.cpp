@@ -30,11 +30,7 @@ struct SpriteInput {
     // distance fade. Null for leaves and bark.
     const SurfaceParticles* surface = nullptr;
     size_t index = 0;
-    float lod_opacity = 1;   // the level of detail's fade (IV.6, IV.7)
-    float lod_scale = 1;     // and growth, on screen after the smallest stroke's clamp
-    float lod_growth = 1;    // the survivors' growth alone
-    float shadow_lift = 0;   // how much of its shadow the level of detail lifts
-    float lod_distance = 0;  // the tree's leaf distance value: interior darkening weakens
+    ParticleLod lod;  // what the level of detail does to it (IV.6, IV.7)
 };
 
 // What every sprite of a frame shares.
@@ -63,11 +59,11 @@ bool sprite_size(const SpriteContext& c, const SpriteMaterial& m, const SpriteIn
     }
     const float min_px = c.rs.min_stroke_px;
     if (w < min_px) l *= min_px / std::max(w, 1e-12f), w = min_px;
-    w *= in.lod_scale, l *= in.lod_scale;
+    w *= in.lod.scale, l *= in.lod.scale;
     if (!(w > 0.0f) || !(l > 0.0f) || !std::isfinite(w) || !std::isfinite(l)) return false;
     out.half_w = 0.5f * w;
     out.half_l = 0.5f * l;
-    out.fade = in.lod_opacity;
+    out.fade = in.lod.fade;
     return true;
 }
 
@@ -110,7 +106,7 @@ void shade_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in,
         d = distance_value(out.depth, a.near_distance, a.far_distance, p.dist_curve_bias);
     const bool surface = in.kind == SpriteKind::kSurface;
     out.k = stroke_constants(p, n_dot_l, in.center_distance, in.branch_distance, in.label,
-                             in.tree_id, in.shadow, d, in.lod_distance,
+                             in.tree_id, in.shadow, d, in.lod.lod_distance,
                              !surface && c.plan.tint && p.unique_tint_amt > 0,
                              c.plan.atmosphere && has_atmosphere_effect(p));
     if (surface) {
@@ -126,10 +122,10 @@ void shade_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in,
     }
     out.kind = in.kind;
     if (!c.plan.sub_stroke) out.k.sub_amt = 0;
-    if (in.lod_growth > 1.0f) {
+    if (in.lod.growth > 1.0f) {
         // A grown survivor's noise grows with it by the square root only: larger dabs, fewer
         // of them (IV.6's lower frequencies), without the whole crown going soft.
-        const float f = std::sqrt(in.lod_growth);
+        const float f = std::sqrt(in.lod.growth);
         out.k.frequ_s *= f, out.k.frequ_t *= f;
     }
     if (c.plan.noise_reseed) {
@@ -191,14 +187,9 @@ SpriteInput sprite_input(const Shot& shot, size_t item, SpriteKind kind, size_t 
 // The level of detail's fade, place and growth of a particle (lod.h); false when it has faded
 // out. A survivor that moves takes its ray origin along.
 bool apply_lod(const SpriteContext& c, size_t item, size_t j, SpriteInput& in, RayOrigin& o) {
-    const ParticleLod l = particle_lod(c.shot, c.lod, item, in.kind, j, in.world);
-    if (l.gone()) return false;
-    in.lod_opacity = l.fade;
-    in.lod_scale = l.scale;
-    in.lod_distance = l.lod_distance;
-    in.lod_growth = l.growth;
-    in.shadow_lift = l.shadow_lift;
-    if (l.moved) o.world = in.world = l.world;
+    in.lod = particle_lod(c.shot, c.lod, item, in.kind, j, in.world);
+    if (in.lod.gone()) return false;
+    if (in.lod.moved) o.world = in.world = in.lod.world;
     return true;
 }
 
@@ -314,7 +305,7 @@ SpriteSet make_sprites(const SpriteStageInput& input) {
             else if (traced && !plan.fragment_shadows)
                 ++counters.shadow_rays.local(),
                     in.shadow = sun_light_at(*sun_rays, origin, c.sun, rs.shadows);
-            in.shadow += (1.0f - in.shadow) * in.shadow_lift;
+            in.shadow += (1.0f - in.shadow) * in.lod.shadow_lift;
             shade_sprite(c, mat, in, sp);
             if (plan.fragment_shadows) {
                 sp.grid = static_cast<int32_t>(out.grids.size());

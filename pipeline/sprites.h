@@ -23,7 +23,7 @@ float grid_at(const ShadowGrid& g, float s, float t);
 
 struct Sprite {
     float x = 0, y = 0, depth = 0;
-    float range = 0;  // distance from the eye: what the depth order sorts by
+    float range = 0;               // distance from the eye: what the depth order sorts by
     float half_w = 0, half_l = 0;  // across and along the stroke, pixels
     float ax = 0, ay = 1;          // unit screen direction of the stroke's length
     // Fading with distance (IV.6, IV.7): 1 whole, 0 gone. A fade raises the stroke's noise
@@ -39,9 +39,10 @@ struct Sprite {
 };
 
 // A particle's key, unique in its shot: item, kind and index.
-inline uint64_t sprite_key(const Sprite& sp) {
-    return (uint64_t{sp.item} << 34) | (uint64_t(sp.kind) << 32) | sp.particle;
+inline uint64_t particle_key(uint32_t item, SpriteKind kind, uint32_t particle) {
+    return (uint64_t{item} << 34) | (uint64_t(kind) << 32) | particle;
 }
+inline uint64_t sprite_key(const Sprite& sp) { return particle_key(sp.item, sp.kind, sp.particle); }
 
 // Half extents of a sprite's screen-aligned bounding box (the rotated rectangle's).
 void sprite_extent(const Sprite& sp, float& ex, float& ey);
