@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
-#include <unordered_set>
 
 #include "pipeline/camera_track.h"
 #include "pipeline/lod.h"
@@ -91,31 +90,43 @@ Sum flicker_between(const Traced& prev, const Traced& cur) {
     return all;
 }
 
-// The ordered pairs (nearest, next nearest) of visibly different strokes over the frame.
+// The pairs of visibly different strokes nearest and next nearest somewhere in the frame, each
+// keyed (lower key, higher key) with the weight of the lower key's stroke being in front: 1 or
+// 0 in a plain order, between while the two blend as their distances cross (composite.h).
 struct PairHash {
     size_t operator()(const std::pair<uint64_t, uint64_t>& p) const {
         return std::hash<uint64_t>()(p.first * 0x9E3779B97F4A7C15ull ^ p.second);
     }
 };
-using PairSet = std::unordered_set<std::pair<uint64_t, uint64_t>, PairHash>;
+using PairOrders = std::unordered_map<std::pair<uint64_t, uint64_t>, float, PairHash>;
 
-PairSet order_pairs(const Traced& t) {
+PairOrders order_pairs(const Traced& t) {
     const auto& tr = *t.report.trace;
-    PairSet pairs;
+    PairOrders pairs;
     for (size_t p = 0; p < tr.first.size(); ++p) {
         const uint32_t a = tr.first[p], b = tr.second[p];
         if (a == kNone || b == kNone) continue;
         const Sprite &sa = tr.sprites[a], &sb = tr.sprites[b];
         if (std::abs(sa.k.lightness - sb.k.lightness) <= 0.05f) continue;
-        pairs.emplace(sprite_key(sa), sprite_key(sb));
+        const uint64_t ka = sprite_key(sa), kb = sprite_key(sb);
+        const float w = tr.first_weight[p];
+        pairs.emplace(ka < kb ? std::pair(ka, kb) : std::pair(kb, ka), ka < kb ? w : 1.0f - w);
     }
     return pairs;
 }
 
-uint64_t swaps_between(const PairSet& prev, const PairSet& cur) {
-    uint64_t n = 0;
-    for (const auto& [a, b] : cur) n += prev.count({b, a});
-    return n;
+// Pairs in both frames whose order crossed from one side of 1/2 to the other, and of those the
+// ones whose order weight moved by more than a third in the one frame: swaps made at once.
+void swaps_between(const PairOrders& prev, const PairOrders& cur, uint64_t& swaps,
+                   uint64_t& abrupt) {
+    for (const auto& [pair, w] : cur) {
+        const auto found = prev.find(pair);
+        if (found == prev.end()) continue;
+        const float v = found->second;
+        if ((v < 0.5f) == (w < 0.5f)) continue;
+        ++swaps;
+        abrupt += std::abs(w - v) > 1.0f / 3.0f;
+    }
 }
 
 // Each particle's presence in a frame, -1 where it is off screen (or behind the camera).
@@ -182,7 +193,7 @@ CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& fram
 
     const std::vector<uint64_t> keys = particle_keys(shot);
     Traced p_on, p_frozen, p_off, p_boil;
-    PairSet p_pairs;
+    PairOrders p_pairs;
     std::vector<float> p_presence;
     double p_area_on = 0, p_area_off = 0;
     Sum f_on, f_frozen, f_boil;
@@ -191,11 +202,12 @@ CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& fram
         boiling.noise_reseed = static_cast<uint32_t>(frames[n]) + 1;
         Traced c_on = paint_traced(shot, view, on), c_frozen = paint_traced(shot, view, frozen);
         Traced c_off = paint_traced(shot, view, off), c_boil = paint_traced(shot, view, boiling);
-        PairSet c_pairs = order_pairs(c_on);
+        PairOrders c_pairs = order_pairs(c_on);
         std::vector<float> c_presence = presences(shot, view, on.render);
         double area_on, l_on, area_off, l_off;
         area_and_lightness(c_on, area_on, l_on);
         area_and_lightness(c_off, area_off, l_off);
+        CoherenceReport::Frame row{frames[n], area_on, area_off, l_on, l_off, 0, 0};
         const auto& sprites_on = c_on.report.trace->sprites;
         rep.sprites_on += sprites_on.size();
         rep.sprites_off += c_off.report.trace->sprites.size();
@@ -210,7 +222,8 @@ CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& fram
             add(f_on, flicker_between(p_on, c_on));
             add(f_frozen, flicker_between(p_frozen, c_frozen));
             add(f_boil, flicker_between(p_boil, c_boil));
-            rep.order_swaps += swaps_between(p_pairs, c_pairs);
+            swaps_between(p_pairs, c_pairs, row.order_swaps, row.abrupt_swaps);
+            rep.order_swaps += row.order_swaps, rep.abrupt_swaps += row.abrupt_swaps;
             for (size_t k = 0; k < c_presence.size(); ++k) {
                 const float a = p_presence[k], b = c_presence[k];
                 if (a < 0 || b < 0) continue;  // off screen in one of the two
@@ -231,6 +244,7 @@ CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& fram
         p_pairs = std::move(c_pairs);
         p_presence = std::move(c_presence);
         p_area_on = area_on, p_area_off = area_off;
+        rep.per_frame.push_back(row);
         ++rep.frames;
         if (progress) progress(rep.frames);
     }

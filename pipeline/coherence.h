@@ -35,8 +35,10 @@ struct CoherenceReport {
     // cause.
     uint64_t cull_pops = 0;
     // Pairs of strokes over 5% opaque, nearest and next nearest at some pixel with lightness
-    // differing by more than 0.05, whose order was the other way round in the previous frame.
-    uint64_t order_swaps = 0;
+    // differing by more than 0.05, whose order was the other way round in the previous frame
+    // (for strokes blending between orders, whose weight crossed 1/2), and of those the swaps
+    // completed in that one frame: the weight moved by more than a third.
+    uint64_t order_swaps = 0, abrupt_swaps = 0;
     // The level of detail on against off, frame by frame: the largest relative difference of
     // the area the strokes cover, of the mean L* over it, and of the area's change from the
     // previous frame beyond what the camera's motion does to the full-detail picture.
@@ -45,6 +47,14 @@ struct CoherenceReport {
     // The level of detail's effect on the work, summed over the frames: sprites and fragments
     // with it on and off.
     uint64_t sprites_on = 0, sprites_off = 0, fragments_on = 0, fragments_off = 0;
+    // Frame by frame, to find where a figure above comes from: the covered area (share of the
+    // frame) and mean L* with the level of detail on and off, and the order swaps made.
+    struct Frame {
+        int frame = 0;
+        double area_on = 0, area_off = 0, lightness_on = 0, lightness_off = 0;
+        uint64_t order_swaps = 0, abrupt_swaps = 0;
+    };
+    std::vector<Frame> per_frame;
 };
 
 // Paints `frames` of the shot four times (level of detail as planned, frozen at the first

@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "pipeline/shot.h"
+#include "shading/curves.h"
 #include "shading/stroke_kernel.h"
 
 namespace pleinair {
@@ -89,6 +90,18 @@ SpriteSpan sprite_span(const Sprite& sp, int px0, int py0, int px1, int py1) {
 // One tile's strokes composited front to back: the premultiplied colour gathered so far, the
 // light still let through (transmittance), and the AOVs of the nearest stroke more than half
 // opaque. The background and underpainting go under it when the tile is done.
+//
+// Soft depth order (thesis V.3, Fig. 31): while the camera moves, two strokes whose eye
+// distances are within `window` frames' worth of their swap speeds (Sprite::swap_speed: the
+// most the eye's travel changes their difference in a frame) of each other are not put in one
+// order: each is seen through the other in proportion to how likely it is to be behind,
+//     C = sum_i c_i a_i prod_{j != i} (1 - a_j s_ji),
+// with s_ji easing from 1/2 at equal distances to 1 (j in front of i) and 0 at the window's
+// edges. Hard orders make it plain "over"; for two strokes it is exactly the mix of both orders
+// "over" gives, so a swap takes at least 2 x window frames; more strokes at once are scaled to
+// the coverage all of them give in any order. To evaluate it front to back, each pixel holds up
+// to kHeld strokes that a later one could still blend with, and settles each once no later
+// stroke can (the strokes come nearest first). A still camera holds none: plain "over".
 struct TileLayer {
     int x0 = 0, y0 = 0, w = 0, h = 0;
     // Light that still reaches a pixel through the strokes painted in front of it, at or below
@@ -97,22 +110,58 @@ struct TileLayer {
     float cutoff = 0;
     int saturated = 0;  // pixels whose transmittance fell to the cutoff
     std::array<float, 3 * kTile * kTile> color{};
-    std::array<float, kTile * kTile> through;
+    std::array<float, kTile * kTile> through;  // through every stroke taken, held or not
     std::array<uint32_t, kTile * kTile> front;  // sprite index of the AOVs, or kNone
-    // The coherence bench's trace: the two nearest strokes over 5% opaque (filled when traced).
+    // The coherence bench's trace: the two nearest strokes over 5% opaque (filled when traced),
+    // and the weight of the first's being in front of the second (1 in plain order).
     std::array<uint32_t, kTile * kTile> first, second;
+    std::array<float, kTile * kTile> first_weight;
     static constexpr uint32_t kNone = ~0u;
+    static constexpr float kInf = std::numeric_limits<float>::infinity();
+
+    // Soft order, in a tile where some sprite moves against another (speed_max > 0).
+    static constexpr int kHeld = 4;
+    struct Held {
+        float r, g, b, a, range, speed;
+        float light;  // reaching it through the settled strokes and those held settled before it
+        uint32_t idx;
+    };
+    bool soft = false;
+    float window = 0;     // render/order_blend_frames / 2
+    float speed_max = 0;  // the tile's largest swap speed
+    // A pixel takes strokes nearer than this: all while light gets through, and once covered,
+    // those that might still blend in front of a held stroke. Saturated pixels' largest.
+    std::array<float, kTile * kTile> open_until;
+    float open_until_all = -kInf;
+    // Per pixel: light through the settled strokes, alpha gathered (a_i times its weight), the
+    // held strokes, and whether any two blended.
+    std::array<float, kTile * kTile> settled, gathered;
+    std::array<uint8_t, kTile * kTile> held_count, blended;
+    Held* held = nullptr;  // kHeld per pixel, the thread's (soft tiles only)
 
     TileLayer(int px0, int py0, int px1, int py1, float cutoff)
         : x0(px0), y0(py0), w(px1 - px0), h(py1 - py0), cutoff(cutoff) {
         through.fill(1.0f);
+        open_until.fill(kInf);
         front.fill(kNone);
         first.fill(kNone);
         second.fill(kNone);
+        first_weight.fill(1.0f);
+    }
+    void make_soft(float win, float speed, Held* pool) {
+        soft = true, window = win, speed_max = speed, held = pool;
+        settled.fill(1.0f);
+        gathered.fill(0.0f);
+        held_count.fill(0);
+        blended.fill(0);
     }
     size_t at(int x, int y) const { return static_cast<size_t>(y - y0) * kTile + (x - x0); }
-    bool open(int x, int y) const { return through[at(x, y)] > cutoff; }
-    bool full() const { return saturated == w * h; }
+    // The eye distance of the stroke being painted: whether it can change a pixel.
+    float range = 0;
+    bool open(int x, int y) const { return range < open_until[at(x, y)]; }
+    bool full(float next_range) const {
+        return saturated == w * h && !(next_range < open_until_all);
+    }
     // Whether any pixel of the box [x0, x1] x [y0, y1] (inside the tile) can still change.
     bool any_open(int bx0, int by0, int bx1, int by1) const {
         for (int y = by0; y <= by1; ++y)
@@ -120,7 +169,29 @@ struct TileLayer {
                 if (open(x, y)) return true;
         return false;
     }
+    // How far beyond a held stroke a later one may lie and still blend with it.
+    float reach(const Held& e) const { return window * (e.speed + speed_max); }
+    // After a stroke at pixel li: counts it saturated, and how long it stays open.
+    void settle(size_t li, bool was_open) {
+        const bool now_open = through[li] > cutoff;
+        if (was_open && !now_open) ++saturated;
+        if (now_open) return;
+        float until = -kInf;
+        if (soft)
+            for (int k = 0; k < held_count[li]; ++k) {
+                const Held& e = held[li * kHeld + k];
+                until = std::max(until, e.range + reach(e));
+            }
+        open_until[li] = until;
+        open_until_all = std::max(open_until_all, until);
+    }
 };
+
+// The weight of a stroke at distance ra being in front of one at rb, for the pair's window
+// `reach` (TileLayer): 1 beyond it, 1/2 at equal distances.
+float in_front(float ra, float rb, float reach) {
+    return rb - ra >= reach ? 1.0f : smoothstep(-reach, reach, rb - ra);
+}
 
 // What the tile painter shares across its sprites.
 struct TilePainter {
@@ -134,25 +205,85 @@ struct TilePainter {
     StrokeLayer& out;
     uint64_t fragments = 0;
 
-    // Premultiplied "under" of one stroke fragment: it shows through what lies in front.
+    // Premultiplied "under" of one stroke fragment: it shows through what lies in front (or,
+    // while the camera moves, is held to blend with its neighbours in distance: TileLayer).
     void composite(int x, int y, Color col, float a, uint32_t idx) {
         const size_t li = layer.at(x, y);
+        if (layer.soft) return hold(li, col, a, idx);
         float& through = layer.through[li];
+        const bool was_open = through > layer.cutoff;
+        trace(li, a, idx);
         const float w = through * a;
         float* c = &layer.color[3 * li];
         c[0] += col.x * w;
         c[1] += col.y * w;
         c[2] += col.z * w;
         if (plan.aovs && a > 0.5f && layer.front[li] == TileLayer::kNone) layer.front[li] = idx;
-        if (plan.trace && a > 0.05f) {
-            if (layer.first[li] == TileLayer::kNone)
-                layer.first[li] = idx;
-            else if (layer.second[li] == TileLayer::kNone && layer.first[li] != idx)
-                layer.second[li] = idx;
-        }
-        const bool was_open = through > layer.cutoff;
         through *= 1.0f - a;
-        if (was_open && !(through > layer.cutoff)) ++layer.saturated;
+        layer.settle(li, was_open);
+    }
+
+    // Soft order: settles the held strokes no later one can blend with, then holds this one
+    // (dropped if the pixel is covered and it can blend with none of them).
+    void hold(size_t li, Color col, float a, uint32_t idx) {
+        const Sprite& sp = set.sprites[idx];
+        TileLayer::Held* h = &layer.held[li * TileLayer::kHeld];
+        uint8_t& count = layer.held_count[li];
+        while (count > 0 && !(sp.range < h[0].range + layer.reach(h[0]))) settle_front(li);
+        float& through = layer.through[li];
+        const bool was_open = through > layer.cutoff;
+        if (!was_open) {
+            bool blends = false;
+            for (int k = 0; k < count; ++k)
+                blends |= sp.range - h[k].range < layer.window * (h[k].speed + sp.swap_speed);
+            if (!blends) return;
+        }
+        if (count == TileLayer::kHeld) settle_front(li);
+        trace(li, a, idx);
+        if (plan.aovs && a > 0.5f && layer.front[li] == TileLayer::kNone) layer.front[li] = idx;
+        h[count++] = {col.x, col.y, col.z, a, sp.range, sp.swap_speed, layer.settled[li], idx};
+        through *= 1.0f - a;
+        layer.settle(li, was_open);
+    }
+
+    // The nearest held stroke at pixel li settled: its colour added, seen through the strokes
+    // held with it by how likely each is in front, and its light taken from theirs.
+    void settle_front(size_t li) {
+        TileLayer::Held* h = &layer.held[li * TileLayer::kHeld];
+        uint8_t& count = layer.held_count[li];
+        const TileLayer::Held& f = h[0];
+        float light = f.light;
+        for (int k = 1; k < count; ++k) {
+            const float reach = layer.window * (f.speed + h[k].speed);
+            const float front = in_front(f.range, h[k].range, reach);
+            if (front < 1.0f) {
+                light *= 1.0f - h[k].a * (1.0f - front);  // k in front of f
+                h[k].light *= 1.0f - f.a * front;
+                layer.blended[li] = 1;
+                if (plan.trace && layer.first[li] == f.idx && layer.second[li] == h[k].idx)
+                    layer.first_weight[li] = front;
+            } else {
+                h[k].light *= 1.0f - f.a;
+            }
+        }
+        const float w = light * f.a;
+        float* c = &layer.color[3 * li];
+        c[0] += f.r * w;
+        c[1] += f.g * w;
+        c[2] += f.b * w;
+        layer.gathered[li] += w;
+        layer.settled[li] *= 1.0f - f.a;
+        std::copy(h + 1, h + count, h);
+        --count;
+    }
+
+    // The coherence bench's two nearest strokes over 5% opaque.
+    void trace(size_t li, float a, uint32_t idx) {
+        if (!plan.trace || !(a > 0.05f)) return;
+        if (layer.first[li] == TileLayer::kNone)
+            layer.first[li] = idx;
+        else if (layer.second[li] == TileLayer::kNone && layer.first[li] != idx)
+            layer.second[li] = idx;
     }
 
     // The feather, widened by the pixel's footprint in noise space at one sample per pixel
@@ -247,14 +378,32 @@ struct TilePainter {
         samples(idx, r, m, pf, use_ramp ? &ramp : nullptr, grid);
     }
 
+    // Soft order: every held stroke settled; where three or more blended, the colour scaled to
+    // the coverage they give in any order (two blended give it exactly).
+    void settle_all() {
+        for (int y = layer.y0; y < layer.y0 + layer.h; ++y)
+            for (int x = layer.x0; x < layer.x0 + layer.w; ++x) {
+                const size_t li = layer.at(x, y);
+                while (layer.held_count[li] > 0) settle_front(li);
+                const float cover = 1.0f - layer.through[li], gathered = layer.gathered[li];
+                if (!layer.blended[li] || !(gathered > 0.0f)) continue;
+                const float scale = cover / gathered;
+                for (int k = 0; k < 3; ++k) layer.color[3 * li + k] *= scale;
+            }
+    }
+
     // The tile's part of the frame's stroke layer, and its AOVs.
     void finish() {
+        if (layer.soft) settle_all();
         for (int y = layer.y0; y < layer.y0 + layer.h; ++y)
             for (int x = layer.x0; x < layer.x0 + layer.w; ++x) {
                 const size_t li = layer.at(x, y), pi = static_cast<size_t>(y) * frame.width + x;
                 std::copy_n(&layer.color[3 * li], 3, &out.color[3 * pi]);
                 out.through[pi] = layer.through[li];
-                if (plan.trace) out.first[pi] = layer.first[li], out.second[pi] = layer.second[li];
+                if (plan.trace) {
+                    out.first[pi] = layer.first[li], out.second[pi] = layer.second[li];
+                    out.first_weight[pi] = layer.first_weight[li];
+                }
                 if (!plan.aovs || layer.front[li] == TileLayer::kNone) continue;
                 const Sprite& sp = set.sprites[layer.front[li]];
                 frame.depth[pi] = sp.depth;
@@ -376,7 +525,10 @@ StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins
     const size_t npix = static_cast<size_t>(frame.width) * frame.height;
     out.color.assign(3 * npix, 0.0f);
     out.through.assign(npix, 1.0f);
-    if (plan.trace) out.first.assign(npix, ~0u), out.second.assign(npix, ~0u);
+    if (plan.trace) {
+        out.first.assign(npix, ~0u), out.second.assign(npix, ~0u);
+        out.first_weight.assign(npix, 1.0f);
+    }
     const int n = rs.samples >= 16 ? 4 : rs.samples >= 4 ? 2 : 1;
     std::vector<uint64_t> tile_fragments(bins.bins.size(), 0);
     tbb::parallel_for(size_t{0}, bins.bins.size(), [&](size_t tile) {
@@ -395,8 +547,20 @@ StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins
         // Front to back (the bin's order reversed), until every pixel of the tile is covered:
         // the strokes behind would not show.
         auto layer = std::make_unique<TileLayer>(px0, py0, px1, py1, rs.coverage_cutoff);
+        float speed_max = 0;
+        for (uint32_t idx : bin) speed_max = std::max(speed_max, set.sprites[idx].swap_speed);
+        if (rs.order_blend_frames > 0 && speed_max > 0) {
+            // The held strokes, kept per thread: 4 x 32 bytes a pixel.
+            thread_local std::vector<TileLayer::Held> pool;
+            pool.resize(TileLayer::kHeld * kTile * kTile);
+            layer->make_soft(0.5f * rs.order_blend_frames, speed_max, pool.data());
+        }
         TilePainter painter{shot, set, plan, rs, frame, n, *layer, out};
-        for (auto it = bin.rbegin(); it != bin.rend() && !layer->full(); ++it) painter.paint(*it);
+        for (auto it = bin.rbegin(); it != bin.rend(); ++it) {
+            layer->range = set.sprites[*it].range;
+            if (layer->full(layer->range)) break;
+            painter.paint(*it);
+        }
         painter.finish();
         tile_fragments[tile] = painter.fragments;
     });

@@ -28,8 +28,10 @@ struct StrokeLayer {
     std::vector<float> through;  // 1 per pixel
     uint64_t fragments = 0;      // pixel samples shaded
     // Traced frames only (FramePlan::trace): per pixel the sprite indices of the two nearest
-    // strokes more than 5% opaque there, ~0u for none.
+    // strokes more than 5% opaque there, ~0u for none, and the weight of the first's order
+    // when the two were blended as their eye distances crossed (1 when not).
     std::vector<uint32_t> first, second;
+    std::vector<float> first_weight;
     // Nothing under the strokes can change the pixel by more than the cutoff.
     bool covered(size_t pixel) const { return !(through[pixel] > cutoff); }
 };

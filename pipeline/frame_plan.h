@@ -38,6 +38,9 @@ struct FrameView {
     // On a camera track, at `time` seconds: the level of detail replays the track up to it.
     bool on_track = false;
     double time = 0;
+    // How far the eye moves in one frame there (zero for a still): strokes whose distances from
+    // the eye are about to cross blend from one order to the other (composite.h).
+    glm::dvec3 eye_velocity{0, 0, 0};
 };
 
 // How a frame learns each particle's light.

@@ -1,6 +1,7 @@
 // paint_frame: the frame's stages in order, each timed for --explain.
 #include "pipeline/paint.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -32,6 +33,14 @@ FrameView view_at(const SceneDesc& scene, double t) {
         v.circles = circles_of(key, scene.circles);
         v.on_track = true;
         v.time = t;
+        // Central difference over a frame either side (one side at the track's ends).
+        const double dt = 1.0 / scene.fps;
+        const double ta = std::max(t - dt, scene.camera_track.keys.front().time);
+        const double tb = std::min(t + dt, scene.camera_track.keys.back().time);
+        if (tb > ta)
+            v.eye_velocity = (track_at(scene.camera_track, tb).position -
+                              track_at(scene.camera_track, ta).position) *
+                             (dt / (tb - ta));
     }
     if (!scene.sun_track.empty()) v.sun_direction = sun_at(scene.sun_track, t);
     return v;
@@ -167,7 +176,8 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
     rep.passes.push_back({"composite", true, "the strokes over what lies under them", t.ms(), ""});
     if (plan.trace)
         rep.trace = std::make_shared<FrameReport::Trace>(FrameReport::Trace{
-            std::move(sprites.sprites), strokes.first, strokes.second, strokes.through});
+            std::move(sprites.sprites), strokes.first, strokes.second, strokes.first_weight,
+            strokes.through});
     return frame;
 }
 

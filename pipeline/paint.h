@@ -25,10 +25,12 @@ struct FrameReport {
     uint64_t shadow_rays = 0, underpaint_rays = 0;
     uint64_t fragments = 0;  // pixel samples evaluated by the stroke shader
     // Traced frames only (FrameSettings::trace): the frame's sprites, each pixel's two nearest
-    // strokes (indices into them, ~0u for none) and the light the strokes leave through.
+    // strokes (indices into them, ~0u for none), the weight of the first's order (StrokeLayer)
+    // and the light the strokes leave through.
     struct Trace {
         std::vector<Sprite> sprites;
         std::vector<uint32_t> first, second;
+        std::vector<float> first_weight;
         std::vector<float> through;
     };
     std::shared_ptr<Trace> trace;

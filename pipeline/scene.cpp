@@ -290,6 +290,11 @@ void visit_scene(SceneDesc& s, V& v) {
         v.real("max_leaf_growth", r.max_leaf_growth, {1, 10}, "",
                "Most a surviving leaf stroke grows (linear size) to keep its tree's coverage "
                "as outer leaves fade.");
+        v.real("order_blend_frames", r.order_blend_frames, {0, 48}, "",
+               "Strokes are painted in order of distance from the eye. When the camera moves and "
+               "two overlapping strokes' distances cross, they blend from one order to the other "
+               "over this many frames instead of swapping in one (a pop, thesis V.3); 0 swaps at "
+               "once. A still camera is unaffected.");
         v.real("surface_density", s.build.surface_density, {0.05, 16}, "",
                "Surface particles per cluster, relative to the scene's; sprites shrink so the "
                "covered area stays the same.");

@@ -24,6 +24,9 @@ float grid_at(const ShadowGrid& g, float s, float t);
 struct Sprite {
     float x = 0, y = 0, depth = 0;
     float range = 0;               // distance from the eye: what the depth order sorts by
+    // The most its range can change in one frame against that of a sprite overlapping it on
+    // screen: the eye's travel times the sprite's angular radius (0 for a still camera).
+    float swap_speed = 0;
     float half_w = 0, half_l = 0;  // across and along the stroke, pixels
     float ax = 0, ay = 1;          // unit screen direction of the stroke's length
     // Fading with distance (IV.6, IV.7): 1 whole, 0 gone. A fade raises the stroke's noise

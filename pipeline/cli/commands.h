@@ -64,6 +64,7 @@ struct BenchCommand {
     std::vector<std::string> set;
     std::string frames;    // coherence: A-B[xSTEP]; empty: the whole track
     bool preview = false;  // coherence: half the resolution
+    bool per_frame = false;  // coherence: a row per frame too
 };
 
 struct PresetsCommand {

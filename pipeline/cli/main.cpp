@@ -144,6 +144,8 @@ Command add_bench(CLI::App& app) {
     b->add_option("--set", c->set, "Override a scene key: POINTER=VALUE");
     b->add_option("--frames", c->frames, "coherence: frames A-B[xSTEP] (default: the track's)");
     b->add_flag("--preview", c->preview, "coherence: half the resolution");
+    b->add_flag("--per-frame", c->per_frame,
+                "coherence: also a row per frame (area and L* on and off, swaps)");
 
     return {b, [=] {
                 return c->what == "coherence" ? run_bench_coherence(*c) : run_bench_accuracy(*c);

@@ -377,5 +377,80 @@ TEST(Composite, CoverageCutoffBoundsTheErrorOfSkippedStrokes) {
         EXPECT_NEAR(every.alpha[i], skipped.alpha[i], 1.0f / 2048 + 1e-6f);
 }
 
+// Soft depth order (V.3, Fig. 31): two overlapping strokes whose eye distances cross as the
+// camera moves blend from one order to the other over order_blend_frames instead of swapping
+// in one frame. A recedes and B nears at 0.01 a frame each; they cross at frame 0.
+struct CrossingStrokes {
+    Shot shot = build_shot(parse_scene(R"({"camera": {"position": [0, 0, 10],
+        "look_at": [0, 0, 0], "fov": 20, "width": 64, "height": 48},
+        "families": {"oak": {"preset": "oak"}}, "trees": []})",
+                                       "test"));
+
+    // The stroke layer at frame n (rates scaled by `moving`: 0 is a still camera).
+    StrokeLayer at(float n, float blend_frames, float moving = 1) const {
+        SpriteSet set;
+        for (int i = 0; i < 2; ++i) {
+            Sprite sp;
+            sp.x = 32, sp.y = 24, sp.half_w = 14, sp.half_l = 14;
+            sp.material = shot.materials.leaf(0);
+            sp.k.lightness = i == 0 ? 0.15f : 0.9f;  // visibly different
+            sp.k.offset_s = 0.3f * i;
+            const float dir = i == 0 ? 1.0f : -1.0f;
+            sp.range = 10 + 0.01f * dir * n;
+            sp.swap_speed = 0.01f * moving;  // their ranges change by 0.02 a frame
+            set.sprites.push_back(sp);
+        }
+        FrameSettings fs = scene_frame_settings(shot.scene);
+        fs.render.order_blend_frames = blend_frames;
+        const FramePlan plan = plan_frame(shot, fs);
+        Frame frame = make_frame(still_view(shot.scene).camera, false);
+        const TileBins bins = bin_sprites(set.sprites, depth_order(set.sprites), 64, 48);
+        return paint_strokes(shot, set, bins, plan, fs.render, frame);
+    }
+};
+
+double mean_difference(const StrokeLayer& a, const StrokeLayer& b) {
+    double d = 0;
+    for (size_t i = 0; i < a.color.size(); ++i) d += std::abs(a.color[i] - b.color[i]);
+    return d / static_cast<double>(a.color.size());
+}
+
+TEST(Composite, StrokesWhoseDistancesCrossSwapOverFrames) {
+    const CrossingStrokes c;
+    // The two plain orders, and how far apart they are.
+    const StrokeLayer a_front = c.at(-4, 0), b_front = c.at(4, 0);
+    const double swap = mean_difference(a_front, b_front);
+    ASSERT_GT(swap, 0.002);  // a mean over the frame: the strokes cover part of it
+    // Beyond the window the order is plain, to the byte.
+    for (float n : {-4.0f, -3.0f, 3.0f, 4.0f}) {
+        const StrokeLayer soft = c.at(n, 5), hard = c.at(n, 0);
+        EXPECT_EQ(soft.color, hard.color) << "frame " << n;
+        EXPECT_EQ(soft.through, hard.through) << "frame " << n;
+    }
+    // Within it the picture moves from one order to the other by less than a third of the
+    // swap in any one frame, and is the even mix of both at the crossing.
+    double steepest = 0;
+    for (float n = -4; n < 4; n += 1)
+        steepest = std::max(steepest, mean_difference(c.at(n, 5), c.at(n + 1, 5)) / swap);
+    EXPECT_LT(steepest, 1.0 / 3.0);
+    EXPECT_GT(steepest, 0.2);  // it does swap, over about five frames
+    const StrokeLayer mid = c.at(0, 5);
+    for (size_t i = 0; i < mid.color.size(); ++i)
+        ASSERT_NEAR(mid.color[i], 0.5f * (a_front.color[i] + b_front.color[i]), 1e-5f);
+    // Without the blend the swap happens between two frames, whole.
+    EXPECT_NEAR(mean_difference(c.at(-0.5f, 0), c.at(0.5f, 0)), swap, 1e-6);
+    // Light let through does not depend on the order.
+    for (size_t i = 0; i < mid.through.size(); ++i)
+        ASSERT_NEAR(mid.through[i], a_front.through[i], 1e-6f);
+}
+
+TEST(Composite, AStillCameraKeepsThePlainOrder) {
+    const CrossingStrokes c;
+    for (float n : {-1.0f, -0.2f, 0.2f, 1.0f}) {
+        const StrokeLayer soft = c.at(n, 5, 0), hard = c.at(n, 0, 0);
+        EXPECT_EQ(soft.color, hard.color) << "frame " << n;
+    }
+}
+
 }  // namespace
 }  // namespace pleinair
