@@ -19,13 +19,17 @@ namespace pleinair {
 struct Shot;
 struct SceneDesc;
 
+// Survivors grow linearly by kept^-kGrowthPower: Cook et al.'s 1/2 (area by 1 / kept), a
+// little less since the survivors' spread also widens what they fill (lod.cpp).
+constexpr float kGrowthPower = 0.45f;
+
 struct TreeLod {
     // The leaves' distance value at the tree's centre (0 full detail, 1 least), and the bark's
     // (strokes on twigs fade towards 1): replayed along the track (replay_path).
     float leaf = 0;
     float trunk = 0;
     float kept = 1;    // the mean opacity of its leaves at `leaf` (Cook et al.'s u)
-    float growth = 1;  // each surviving leaf stroke's linear scale: 1 / sqrt(kept), bounded
+    float growth = 1;  // each surviving leaf stroke's linear scale: kept^-kGrowthPower, bounded
     // How much the interior darkening weakens (the shader's lod_distance): as much as keeps the
     // survivors' mean lightness the whole tree's.
     float darkening_lift = 0;

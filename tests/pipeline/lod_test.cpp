@@ -157,10 +157,11 @@ TEST(LevelOfDetail, TreesLoseLeavesAsTheyRecedeAndSurvivorsGrow) {
         EXPECT_FLOAT_EQ(t.leaf, circle_value(view_depth(view.camera, c), 20, 120));
         EXPECT_GE(t.leaf, last_value);
         EXPECT_LE(t.kept, last_kept);
-        // The survivors' area makes up for the leaves gone (Cook et al.): u * growth^2 = 1
-        // while the growth is within its bound.
+        // The survivors' area makes up for the leaves gone (Cook et al.): growth =
+        // u^-kGrowthPower while the growth is within its bound.
         if (t.growth < rs.max_leaf_growth) {
-            EXPECT_NEAR(t.kept * t.growth * t.growth, 1.0f, 1e-4f);
+            EXPECT_NEAR(std::pow(t.kept, kGrowthPower) * t.growth, 1.0f, 1e-4f);
+            EXPECT_GT(t.growth, 1.0f / std::sqrt(t.kept) - 0.5f);  // about Cook's 1 / sqrt(u)
         }
         EXPECT_GE(t.growth, 1.0f);
         EXPECT_LE(t.growth, rs.max_leaf_growth);
