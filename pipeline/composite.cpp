@@ -127,6 +127,7 @@ struct TileLayer {
         uint32_t idx;
     };
     bool soft = false;
+    bool solo = false;    // the stroke being painted can blend with no later one
     float window = 0;     // render/order_blend_frames / 2
     float speed_max = 0;  // the tile's largest swap speed
     // A pixel takes strokes nearer than this: all while light gets through, and once covered,
@@ -241,7 +242,19 @@ struct TilePainter {
         if (count == TileLayer::kHeld) settle_front(li);
         trace(li, a, idx);
         if (plan.aovs && a > 0.5f && layer.front[li] == TileLayer::kNone) layer.front[li] = idx;
-        h[count++] = {col.x, col.y, col.z, a, sp.range, sp.swap_speed, layer.settled[li], idx};
+        if (count == 0 && layer.solo) {
+            // Nothing held here and no later stroke of the tile can blend with it: settled at
+            // once, as plain "over" would.
+            const float w = layer.settled[li] * a;
+            float* c = &layer.color[3 * li];
+            c[0] += col.x * w;
+            c[1] += col.y * w;
+            c[2] += col.z * w;
+            layer.gathered[li] += w;
+            layer.settled[li] *= 1.0f - a;
+        } else {
+            h[count++] = {col.x, col.y, col.z, a, sp.range, sp.swap_speed, layer.settled[li], idx};
+        }
         through *= 1.0f - a;
         layer.settle(li, was_open);
     }
@@ -557,8 +570,17 @@ StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins
         }
         TilePainter painter{shot, set, plan, rs, frame, n, *layer, out};
         for (auto it = bin.rbegin(); it != bin.rend(); ++it) {
-            layer->range = set.sprites[*it].range;
+            const Sprite& sp = set.sprites[*it];
+            layer->range = sp.range;
             if (layer->full(layer->range)) break;
+            if (layer->soft) {
+                // Whether the next stroke of the tile (and so every later one) lies beyond
+                // this one's reach: then it blends with none of them.
+                const auto next = std::next(it);
+                layer->solo = next == bin.rend() ||
+                              !(set.sprites[*next].range <
+                                sp.range + layer->window * (sp.swap_speed + layer->speed_max));
+            }
             painter.paint(*it);
         }
         painter.finish();
