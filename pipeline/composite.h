@@ -37,8 +37,10 @@ struct StrokeLayer {
 };
 
 // Composites the binned sprites nearest first, skipping pixels the nearer strokes already
-// cover (at most coverage_cutoff of their light left). Fills the AOVs of the nearest stroke
-// more than half opaque when the plan asks.
+// cover (at most coverage_cutoff of their light left); while the camera moves, strokes whose
+// eye distances cross blend from one order to the other over render/order_blend_frames
+// (composite.cpp: TileLayer). Fills the AOVs of the nearest stroke more than half opaque when
+// the plan asks.
 StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& sprites, const TileBins& bins,
                           const FramePlan& plan, const RenderSettings& settings, Frame& frame);
 
