@@ -175,6 +175,27 @@ void area_and_lightness(const Traced& t, double& area, double& lightness) {
     lightness = a > 0 ? l / a : 0;
 }
 
+// How much the two frames' covered shapes agree: their coverage averaged over blocks of
+// kBlock x kBlock pixels (a stroke's own place does not count, the crown's outline does),
+// then the sum of the smaller over the sum of the larger, 1 for the same shape.
+double shape_overlap(const Traced& a, const Traced& b, int width, int height) {
+    constexpr int kBlock = 4;
+    const auto& ta = a.report.trace->through;
+    const auto& tb = b.report.trace->through;
+    double common = 0, either = 0;
+    for (int by = 0; by < height; by += kBlock)
+        for (int bx = 0; bx < width; bx += kBlock) {
+            double ca = 0, cb = 0;
+            for (int y = by; y < std::min(by + kBlock, height); ++y)
+                for (int x = bx; x < std::min(bx + kBlock, width); ++x) {
+                    const size_t p = static_cast<size_t>(y) * width + x;
+                    ca += 1.0 - ta[p], cb += 1.0 - tb[p];
+                }
+            common += std::min(ca, cb), either += std::max(ca, cb);
+        }
+    return either > 0 ? common / either : 1.0;
+}
+
 }  // namespace
 
 CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& frames,
@@ -207,7 +228,10 @@ CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& fram
         double area_on, l_on, area_off, l_off;
         area_and_lightness(c_on, area_on, l_on);
         area_and_lightness(c_off, area_off, l_off);
-        CoherenceReport::Frame row{frames[n], area_on, area_off, l_on, l_off, 0, 0};
+        const double overlap =
+            shape_overlap(c_on, c_off, view.camera.width, view.camera.height);
+        rep.shape_overlap = std::min(rep.shape_overlap, overlap);
+        CoherenceReport::Frame row{frames[n], area_on, area_off, l_on, l_off, overlap, 0, 0};
         const auto& sprites_on = c_on.report.trace->sprites;
         rep.sprites_on += sprites_on.size();
         rep.sprites_off += c_off.report.trace->sprites.size();
