@@ -231,6 +231,8 @@ CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& fram
         const double overlap =
             shape_overlap(c_on, c_off, view.camera.width, view.camera.height);
         rep.shape_overlap = std::min(rep.shape_overlap, overlap);
+        rep.shape_floor = std::min(
+            rep.shape_floor, shape_overlap(c_on, c_boil, view.camera.width, view.camera.height));
         CoherenceReport::Frame row{frames[n], area_on, area_off, l_on, l_off, overlap, 0, 0};
         const auto& sprites_on = c_on.report.trace->sprites;
         rep.sprites_on += sprites_on.size();

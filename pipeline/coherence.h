@@ -46,7 +46,9 @@ struct CoherenceReport {
     double area_difference = 0, lightness_difference = 0, area_step = 0;
     // The least agreement of the covered shapes, on against off: coverage averaged over 4 x 4
     // pixel blocks, the sum of the smaller over the sum of the larger (1: the same outline).
-    double shape_overlap = 1;
+    // Its floor: the same between the shot and its boiling baseline, where only the strokes'
+    // noise differs.
+    double shape_overlap = 1, shape_floor = 1;
     // The level of detail's effect on the work, summed over the frames: sprites and fragments
     // with it on and off.
     uint64_t sprites_on = 0, sprites_off = 0, fragments_on = 0, fragments_off = 0;
@@ -55,7 +57,9 @@ struct CoherenceReport {
     struct Frame {
         int frame = 0;
         double area_on = 0, area_off = 0, lightness_on = 0, lightness_off = 0;
-        double shape_overlap = 1;
+        // Its floor: the same between the shot and its boiling baseline, where only the strokes'
+    // noise differs.
+    double shape_overlap = 1, shape_floor = 1;
         uint64_t order_swaps = 0, abrupt_swaps = 0;
     };
     std::vector<Frame> per_frame;

@@ -63,7 +63,9 @@ int run_bench_coherence(const BenchCommand& cmd) {
         r.lod ? fmt("%.1f%%", 100 * r.area_difference).c_str() : "no LOD",
         r.lod ? fmt("%.2f", r.lightness_difference).c_str() : "-",
         r.lod ? fmt("%.2f%%", 100 * r.area_step).c_str() : "-",
-        r.lod ? fmt("%.3f", r.shape_overlap).c_str() : "-", ratio(r.sprites_on, r.sprites_off),
+        r.lod ? (fmt("%.3f", r.shape_overlap) + " (floor " + fmt("%.3f", r.shape_floor) + ")").c_str()
+              : "-",
+        ratio(r.sprites_on, r.sprites_off),
         ratio(r.fragments_on, r.fragments_off));
     if (!cmd.per_frame) return 0;
     std::printf(

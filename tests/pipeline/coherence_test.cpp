@@ -50,6 +50,9 @@ TEST(Coherence, ARecedingTreeFadesOverFramesAndKeepsItsSilhouette) {
     EXPECT_GT(r.steepest_fade, 0.0);   // leaves do fade ...
     EXPECT_LE(r.steepest_fade, 0.25);  // ... each over at least 4 frames
     EXPECT_LT(r.area_difference, 0.15);
+    // The outline agrees with full detail's nearly as well as two noises of one tree do.
+    EXPECT_LT(r.shape_overlap, 1.0);
+    EXPECT_GT(r.shape_overlap, r.shape_floor - 0.1);
     EXPECT_LT(r.lightness_difference, 3.0);
     EXPECT_GT(r.flicker, 0.0);
     EXPECT_LT(r.flicker, r.flicker_boiling);
