@@ -228,8 +228,7 @@ CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& fram
         double area_on, l_on, area_off, l_off;
         area_and_lightness(c_on, area_on, l_on);
         area_and_lightness(c_off, area_off, l_off);
-        const double overlap =
-            shape_overlap(c_on, c_off, view.camera.width, view.camera.height);
+        const double overlap = shape_overlap(c_on, c_off, view.camera.width, view.camera.height);
         rep.shape_overlap = std::min(rep.shape_overlap, overlap);
         rep.shape_floor = std::min(
             rep.shape_floor, shape_overlap(c_on, c_boil, view.camera.width, view.camera.height));

@@ -58,8 +58,8 @@ struct CoherenceReport {
         int frame = 0;
         double area_on = 0, area_off = 0, lightness_on = 0, lightness_off = 0;
         // Its floor: the same between the shot and its boiling baseline, where only the strokes'
-    // noise differs.
-    double shape_overlap = 1, shape_floor = 1;
+        // noise differs.
+        double shape_overlap = 1, shape_floor = 1;
         uint64_t order_swaps = 0, abrupt_swaps = 0;
     };
     std::vector<Frame> per_frame;

@@ -110,7 +110,7 @@ struct TileLayer {
     float cutoff = 0;
     int saturated = 0;  // pixels whose transmittance fell to the cutoff
     std::array<float, 3 * kTile * kTile> color{};
-    std::array<float, kTile * kTile> through;  // through every stroke taken, held or not
+    std::array<float, kTile * kTile> through;   // through every stroke taken, held or not
     std::array<uint32_t, kTile * kTile> front;  // sprite index of the AOVs, or kNone
     // The coherence bench's trace: the two nearest strokes over 5% opaque (filled when traced),
     // and the weight of the first's being in front of the second (1 in plain order).

@@ -40,7 +40,7 @@ struct FrameView {
     double time = 0;
     // How far the eye moves in one frame there (zero for a still): strokes whose distances from
     // the eye are about to cross blend from one order to the other (composite.h).
-    glm::dvec3 eye_velocity{0, 0, 0};
+    double eye_speed = 0;
 };
 
 // How a frame learns each particle's light.

@@ -121,7 +121,7 @@ struct ParticleLod {
     float growth = 1;        // a survivor's growth (its tree's)
     // How much of the sun's shadow on it is lifted: the shadow of leaves that have faded.
     float shadow_lift = 0;
-    bool moved = false;      // a survivor spread to its crown: painted at `world`
+    bool moved = false;  // a survivor spread to its crown: painted at `world`
     glm::dvec3 world{0.0};
     // How much of the stroke is there: what the coherence bench follows from frame to frame.
     float presence() const { return fade * thin; }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <glm/geometric.hpp>
 #include <stdexcept>
 
 #include "pipeline/bin.h"
@@ -38,9 +39,9 @@ FrameView view_at(const SceneDesc& scene, double t) {
         const double ta = std::max(t - dt, scene.camera_track.keys.front().time);
         const double tb = std::min(t + dt, scene.camera_track.keys.back().time);
         if (tb > ta)
-            v.eye_velocity = (track_at(scene.camera_track, tb).position -
-                              track_at(scene.camera_track, ta).position) *
-                             (dt / (tb - ta));
+            v.eye_speed = glm::length(track_at(scene.camera_track, tb).position -
+                                      track_at(scene.camera_track, ta).position) *
+                          (dt / (tb - ta));
     }
     if (!scene.sun_track.empty()) v.sun_direction = sun_at(scene.sun_track, t);
     return v;
@@ -175,9 +176,9 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
     composite_strokes(strokes, plan, frame);
     rep.passes.push_back({"composite", true, "the strokes over what lies under them", t.ms(), ""});
     if (plan.trace)
-        rep.trace = std::make_shared<FrameReport::Trace>(FrameReport::Trace{
-            std::move(sprites.sprites), strokes.first, strokes.second, strokes.first_weight,
-            strokes.through});
+        rep.trace = std::make_shared<FrameReport::Trace>(
+            FrameReport::Trace{std::move(sprites.sprites), strokes.first, strokes.second,
+                               strokes.first_weight, strokes.through});
     return frame;
 }
 

@@ -83,8 +83,8 @@ bool place_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in,
     // Two sprites overlapping on screen lie within the sum of their angular radii of each other
     // as seen from the eye, so the eye's travel changes their ranges' difference by at most the
     // sum of their swap speeds.
-    out.swap_speed = static_cast<float>(c.eye_speed * std::hypot(out.half_w, out.half_l) /
-                                        c.cam.focal_px);
+    out.swap_speed =
+        static_cast<float>(c.eye_speed * std::hypot(out.half_w, out.half_l) / c.cam.focal_px);
     // Stroke direction on screen: along the projected tangent (a normal-free frame, so a limb
     // seen end-on still gets one), jittered by the label.
     double angle = 0;
@@ -280,8 +280,13 @@ SpriteSet make_sprites(const SpriteStageInput& input) {
     const FramePlan& plan = input.plan;
     const RenderSettings& rs = input.settings;
     const RayScene* sun_rays = input.sun_rays;
-    const SpriteContext c{shot,      input.view.camera, rs, plan, input.lod,
-                          glm::vec3(input.view.sun_direction), glm::length(input.view.eye_velocity)};
+    const SpriteContext c{shot,
+                          input.view.camera,
+                          rs,
+                          plan,
+                          input.lod,
+                          glm::vec3(input.view.sun_direction),
+                          input.view.eye_speed};
     const size_t items = shot.item_count();
     std::vector<SpriteSet> per_item(items);
     Counters counters;

@@ -23,7 +23,7 @@ float grid_at(const ShadowGrid& g, float s, float t);
 
 struct Sprite {
     float x = 0, y = 0, depth = 0;
-    float range = 0;               // distance from the eye: what the depth order sorts by
+    float range = 0;  // distance from the eye: what the depth order sorts by
     // The most its range can change in one frame against that of a sprite overlapping it on
     // screen: the eye's travel times the sprite's angular radius (0 for a still camera).
     float swap_speed = 0;

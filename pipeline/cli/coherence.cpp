@@ -58,22 +58,21 @@ int run_bench_coherence(const BenchCommand& cmd) {
         "%.2f | %.2f |\n",
         cmd.scene.c_str(), r.flicker_floor, r.flicker, r.flicker_boiling, r.flicker_score(),
         static_cast<unsigned long long>(r.pops), r.steepest_fade,
-        static_cast<unsigned long long>(r.cull_pops), r.order_swaps / pairs,
-        r.abrupt_swaps / pairs,
+        static_cast<unsigned long long>(r.cull_pops), r.order_swaps / pairs, r.abrupt_swaps / pairs,
         r.lod ? fmt("%.1f%%", 100 * r.area_difference).c_str() : "no LOD",
         r.lod ? fmt("%.2f", r.lightness_difference).c_str() : "-",
         r.lod ? fmt("%.2f%%", 100 * r.area_step).c_str() : "-",
-        r.lod ? (fmt("%.3f", r.shape_overlap) + " (floor " + fmt("%.3f", r.shape_floor) + ")").c_str()
-              : "-",
-        ratio(r.sprites_on, r.sprites_off),
-        ratio(r.fragments_on, r.fragments_off));
+        r.lod
+            ? (fmt("%.3f", r.shape_overlap) + " (floor " + fmt("%.3f", r.shape_floor) + ")").c_str()
+            : "-",
+        ratio(r.sprites_on, r.sprites_off), ratio(r.fragments_on, r.fragments_off));
     if (!cmd.per_frame) return 0;
     std::printf(
         "\n| frame | area on | area off | on vs off | L* on | L* off | shape overlap | order "
         "swaps | in one frame |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (const CoherenceReport::Frame& f : r.per_frame)
-        std::printf("| %d | %.4f | %.4f | %+.1f%% | %.2f | %.2f | %.3f | %llu | %llu |\n",
-                    f.frame, f.area_on, f.area_off,
+        std::printf("| %d | %.4f | %.4f | %+.1f%% | %.2f | %.2f | %.3f | %llu | %llu |\n", f.frame,
+                    f.area_on, f.area_off,
                     f.area_off > 0 ? 100 * (f.area_on / f.area_off - 1) : 0.0, f.lightness_on,
                     f.lightness_off, f.shape_overlap,
                     static_cast<unsigned long long>(f.order_swaps),

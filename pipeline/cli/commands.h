@@ -62,8 +62,8 @@ struct BenchCommand {
     std::string scene;
     int repeat = 3;  // renders per setting; the median time is reported
     std::vector<std::string> set;
-    std::string frames;    // coherence: A-B[xSTEP]; empty: the whole track
-    bool preview = false;  // coherence: half the resolution
+    std::string frames;      // coherence: A-B[xSTEP]; empty: the whole track
+    bool preview = false;    // coherence: half the resolution
     bool per_frame = false;  // coherence: a row per frame too
 };
 
