@@ -31,8 +31,8 @@ struct CoherenceReport {
     double steepest_fade = 0;
     // Strokes on screen and present in two consecutive frames whose drawn share changed by more
     // than a third: culled in one and drawn in the other, or seen through more or fewer of
-    // their three visibility rays (a silhouette crossed): a pop the level of detail does not
-    // cause.
+    // their visibility rays (a silhouette crossed; sprites.h: SeenWindow): a pop the level of
+    // detail does not cause.
     uint64_t cull_pops = 0;
     // Pairs of strokes over 5% opaque, nearest and next nearest at some pixel with lightness
     // differing by more than 0.05, whose order was the other way round in the previous frame

@@ -121,7 +121,8 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
     const FrameLod lod = level_of_detail(shot, settings.lod_view ? *settings.lod_view : view, rs);
     if (plan.lod) rep.passes.push_back(lod_report(lod, t.ms()));
     t = PassTimer();
-    SpriteSet sprites = make_sprites({shot, view, plan, rs, lod, sun_rays});
+    const SeenWindow seen = seen_window(shot.scene, view, rs);
+    SpriteSet sprites = make_sprites({shot, view, plan, rs, lod, sun_rays, &seen});
     rep.leaf_sprites = sprites.leaf, rep.bark_sprites = sprites.bark;
     rep.surface_sprites = sprites.surface, rep.culled = sprites.culled;
     rep.shadow_rays = sprites.shadow_rays;
@@ -132,7 +133,10 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
               : plan.sun_light == SunLightSource::kShot ? "; light from the shot"
               : plan.shadows                            ? "; a shadow ray per particle"
                                                         : "") +
-             (plan.underpaint ? "; hidden ones culled" : ""),
+             (!plan.underpaint       ? ""
+              : seen.cameras.empty() ? "; hidden ones culled"
+                                     : "; hidden ones culled, seen from where the eye is over " +
+                                           std::to_string(seen.cameras.size()) + " frames"),
          t.ms(),
          std::to_string(sprites.sprites.size()) + " sprites, " + std::to_string(sprites.culled) +
              " culled (" + std::to_string(sprites.hidden) + " hidden, " +

@@ -295,6 +295,13 @@ void visit_scene(SceneDesc& s, V& v) {
                "two overlapping strokes' distances cross, they blend from one order to the other "
                "over this many frames instead of swapping in one (a pop, thesis V.3); 0 swaps at "
                "once. A still camera is unaffected.");
+        v.integer("occlusion_frames", r.occlusion_frames, {1, 8},
+                  "A stroke partly or wholly behind an opaque surface (a crest, a trunk) is drawn "
+                  "by the share of rays towards the eye that reach it. When the camera moves, the "
+                  "rays go to where the eye is over this many frames around the frame's time, so "
+                  "a stroke a silhouette uncovers or hides appears or disappears over that many "
+                  "frames instead of in one (each frame changes it by at most 1 / this); 1 casts "
+                  "them at the frame's time only. A still camera is unaffected.");
         v.real("surface_density", s.build.surface_density, {0.05, 16}, "",
                "Surface particles per cluster, relative to the scene's; sprites shrink so the "
                "covered area stays the same.");

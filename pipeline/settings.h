@@ -40,6 +40,10 @@ struct RenderSettings {
     // Frames over which two overlapping strokes whose eye distances cross change order (V.3,
     // Fig. 31), instead of swapping in one; 0 swaps at once. Stills are unaffected.
     float order_blend_frames = 5.0f;
+    // Frames of camera travel over which a stroke's visibility past the opaque surfaces is
+    // averaged, so a stroke a silhouette uncovers or hides takes that many frames to change
+    // whole; 1 decides it at the frame's time alone. Stills are unaffected.
+    int occlusion_frames = 4;
 };
 
 }  // namespace pleinair

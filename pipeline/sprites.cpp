@@ -205,28 +205,55 @@ struct Counters {
     tbb::combinable<uint64_t> hidden{[] { return uint64_t{0}; }};
 };
 
-// How much of the sprite the camera sees past the opaque surfaces, in thirds (none: it is
-// culled; the sprites in front paint over the silhouette).
-float visibility(const Shot& shot, const Camera& cam, const RayOrigin& o, const Sprite& sp,
+// A particle's stroke's world radius as `cam` draws it before the level of detail (sprite_size's
+// rule, without the crest shrink and the survivors' growth).
+double drawn_radius(const Camera& cam, const RenderSettings& rs, const SpriteMaterial& m,
+                    const SpriteInput& in, const glm::dvec3& world) {
+    const Projection pr = project(cam, world);
+    const double z = std::max<double>(pr.depth, cam.near_depth);
+    const float jitter = stroke_size_jitter(*m.shader, in.label);
+    double w = stroke_screen_px(cam, rs, in.width * jitter, z);
+    double l = stroke_screen_px(cam, rs, in.length * jitter, z);
+    if (w < rs.min_stroke_px) l *= rs.min_stroke_px / std::max(w, 1e-12), w = rs.min_stroke_px;
+    return 0.5 * std::max(w, l) * z / cam.focal_px;
+}
+
+// How much of the sprite the camera sees past the opaque surfaces (none: it is culled; the
+// sprites in front paint over the silhouette), from the rays of SeenWindow. The heights are
+// points above the particle on the sprite, back-projected to its depth; only upwards, since
+// below a ground stroke's centre lies the ground. `o` is where the sprite is painted; a
+// moving camera's rays start from the particle's own place (`at`) and size, which no frame
+// changes, so a lattice time's rays are the same whichever frame casts them (the level of
+// detail moves and grows survivors a little every frame).
+float visibility(const SpriteContext& c, const SeenWindow* window, const SpriteMaterial& m,
+                 const SpriteInput& in, const RayOrigin& at, const RayOrigin& o, const Sprite& sp,
                  Counters& n) {
-    if (!shot.view_rays) return 1.0f;
-    // The particle and two points above it on the sprite (half way and at its top, back-
-    // projected to its depth), so a stroke rising from behind a crest or a trunk's silhouette
-    // shows a third at a time instead of popping whole when its centre crosses. Only upwards:
-    // below a ground stroke's centre lies the ground.
-    const double radius = std::max(sp.half_w, sp.half_l) * sp.depth / cam.focal_px;
-    int seen = 0;
-    for (double k : {0.0, 0.5, 1.0}) {
-        const glm::dvec3 from = o.lifted() + cam.up * (k * radius);
+    if (!c.shot.view_rays) return 1.0f;
+    static constexpr double kHeight[3] = {0.0, 0.5, 1.0};
+    auto seen_from = [&](const Camera& cam, const RayOrigin& o, int height, double radius) {
+        const glm::dvec3 from = o.lifted() + cam.up * (kHeight[height] * radius);
         const glm::dvec3 to_eye = cam.eye - from;
         const double dist = glm::length(to_eye);
         // Any hit short of the eye hides it: an occlusion query, cheaper than the nearest hit.
-        seen += !(dist > 0) ||
-                !shot.view_rays->occluded(from, glm::vec3(to_eye / dist),
-                                          static_cast<float>(dist) * 0.999f, o.surface_normal());
+        return !(dist > 0) ||
+               !c.shot.view_rays->occluded(from, glm::vec3(to_eye / dist),
+                                           static_cast<float>(dist) * 0.999f, o.surface_normal());
+    };
+    int seen = 0, rays = 0;
+    if (!window || window->cameras.empty()) {
+        const double radius = std::max(sp.half_w, sp.half_l) * sp.depth / c.cam.focal_px;
+        for (int h = 0; h < 3; ++h) seen += seen_from(c.cam, o, h, radius);
+        rays = 3;
+    } else {
+        for (size_t i = 0; i < window->cameras.size(); ++i) {
+            const Camera& cam = window->cameras[i];
+            seen +=
+                seen_from(cam, at, window->heights[i], drawn_radius(cam, c.rs, m, in, at.world));
+        }
+        rays = static_cast<int>(window->cameras.size());
     }
     if (seen == 0) ++n.hidden.local();
-    return static_cast<float>(seen) / 3.0f;
+    return static_cast<float>(seen) / static_cast<float>(rays);
 }
 
 // The 4 x 4 grid of light over a sprite's footprint, back-projected at the particle's depth.
@@ -249,6 +276,31 @@ ShadowGrid shadow_grid(const SpriteContext& c, const RayScene& sun_rays, const R
 }
 
 }  // namespace
+
+SeenWindow seen_window(const SceneDesc& scene, const FrameView& view, const RenderSettings& rs) {
+    SeenWindow w;
+    const int n = rs.occlusion_frames;
+    const auto& keys = scene.camera_track.keys;
+    if (n <= 1 || !view.on_track || !(view.eye_speed > 0) || keys.empty()) return w;
+    // Lattice times (m + c) / fps, c = 1/2 for an even n so the window centres on the frame;
+    // the n nearest the frame's time. The epsilon keeps a frame's own time, (N - 1) / fps times
+    // fps, from rounding to the frame before.
+    const double u = view.time * scene.fps + 1e-6;
+    const double c = n % 2 == 0 ? 0.5 : 0.0;
+    const int64_t first = static_cast<int64_t>(std::floor(u - c)) - (n - 1) / 2;
+    for (int i = 0; i < n; ++i) {
+        const int64_t m = first + i;
+        const double t = std::clamp((static_cast<double>(m) + c) / scene.fps, keys.front().time,
+                                    keys.back().time);
+        Camera cam;
+        if (!make_camera(camera_of(track_at(scene.camera_track, t), scene.camera_params), cam)
+                 .empty())
+            cam = view.camera;  // a key the track's checks let through cannot fail here
+        w.cameras.push_back(cam);
+        w.heights.push_back(static_cast<uint8_t>(((m % 3) + 3) % 3));
+    }
+    return w;
+}
 
 float grid_at(const ShadowGrid& g, float s, float t) {
     constexpr int kGrid = kShadowGrid;
@@ -308,7 +360,8 @@ SpriteSet make_sprites(const SpriteStageInput& input) {
             Sprite sp;
             sp.item = static_cast<uint32_t>(i), sp.particle = static_cast<uint32_t>(j);
             if (!place_sprite(c, mat, in, sp)) return void(++out.culled);
-            const float seen = visibility(shot, c.cam, o, sp, counters);
+            const float seen =
+                visibility(c, input.seen, shot.materials[mat], in, origin, o, sp, counters);
             if (!(seen > 0.0f)) return void(++out.culled);
             sp.fade *= seen;
             if (plan.sun_light == SunLightSource::kShot)

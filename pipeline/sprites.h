@@ -13,6 +13,7 @@
 
 namespace pleinair {
 
+struct SceneDesc;
 struct Shot;
 class RayScene;
 
@@ -66,6 +67,20 @@ struct SpriteSet {
     uint64_t shadow_rays = 0;
 };
 
+// Where rays towards the eye go to decide how much of a stroke is seen past the opaque
+// surfaces. A still camera: the frame's eye, from three heights on the sprite (its particle,
+// half way up and its top), so a stroke rising from behind a crest shows a third at a time.
+// A moving one (render/occlusion_frames n > 1): the camera at n times one frame apart around
+// the frame's, each ray from one of the three heights of the sprite as that camera draws it.
+// The times lie on a lattice fixed to the track's clock and each lattice time keeps its height,
+// so frame N + 1 casts n - 1 of frame N's rays again: the share seen changes by at most 1/n a
+// frame, whatever the silhouettes do.
+struct SeenWindow {
+    std::vector<Camera> cameras;   // empty: the frame's camera, at all three heights
+    std::vector<uint8_t> heights;  // per camera: 0, 1 or 2 (particle, half way, top)
+};
+SeenWindow seen_window(const SceneDesc& scene, const FrameView& view, const RenderSettings& rs);
+
 // What the sprites stage reads.
 struct SpriteStageInput {
     const Shot& shot;
@@ -76,6 +91,7 @@ struct SpriteStageInput {
     // The sun's scene for this frame (the shot's, or one built for a moving sun); null when the
     // plan takes no light from rays.
     const RayScene* sun_rays = nullptr;
+    const SeenWindow* seen = nullptr;  // null: the frame's eye only
 };
 
 SpriteSet make_sprites(const SpriteStageInput& input);

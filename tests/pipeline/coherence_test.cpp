@@ -76,5 +76,30 @@ TEST(Coherence, OrbitingSwapsStrokesOverFramesNotInOne) {
     EXPECT_LE(s.abrupt_swaps * 50, s.order_swaps) << "... at most one in 50 made at once";
 }
 
+// A walk along low ground towards a crest: ground strokes behind it rise into view and sink
+// behind it as the eye moves. Seen from the eye over four frames, none changes by more than a
+// quarter in a frame; decided at each frame's time alone (occlusion_frames 1), some pop.
+TEST(Coherence, StrokesASilhouetteUncoversAppearOverFrames) {
+    const Shot shot = build_shot(parse_scene(R"({"fps": 12,
+        "camera": {"width": 96, "height": 64, "fov": 40,
+                   "track": [{"time": 0, "position": [0, 1.2, 40], "look_at": [0, 0.5, 0]},
+                             {"time": 2, "position": [6, 1.6, 28], "look_at": [0, 0.5, 0]}]},
+        "materials": {"grass": {"shader": "grass"}},
+        "terrain": {"seed": 2, "min": [-40, -60], "max": [40, 50], "resolution": 33,
+                    "hills": [{"center": [0, 20], "radius": 8, "height": 2.5},
+                              {"center": [-8, -10], "radius": 12, "height": 3}],
+                    "material": "grass",
+                    "strokes": {"particle_spans_u": 40, "particle_spans_v": 40}}})",
+                                             "crest"));
+    std::vector<int> frames;
+    for (int f = 1; f <= 13; ++f) frames.push_back(f);
+    FrameSettings window = scene_frame_settings(shot.scene), instant = window;
+    instant.render.occlusion_frames = 1;
+    const CoherenceReport w = measure_coherence(shot, frames, window);
+    const CoherenceReport i = measure_coherence(shot, frames, instant);
+    EXPECT_GT(i.cull_pops, 0u);  // 28 over 12 frame pairs when written
+    EXPECT_EQ(w.cull_pops, 0u);
+}
+
 }  // namespace
 }  // namespace pleinair

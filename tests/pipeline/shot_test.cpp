@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <glm/geometric.hpp>
+#include <set>
 #include <unordered_set>
 
 #include "pipeline/bin.h"
@@ -199,6 +200,49 @@ TEST(Sprites, PartlyHiddenStrokesAreDrawnByTheShareSeen) {
     }
     EXPECT_GT(partial, 0u);
     EXPECT_GT(set.hidden, 0u);
+}
+
+// A moving camera's occlusion rays go to where the eye is over occlusion_frames frames, on a
+// lattice fixed to the track's clock: the next frame casts all but one of them again, from the
+// same heights, so the share seen changes by at most one ray's worth a frame.
+TEST(Sprites, TheNextFrameCastsAllButOneOfTheSameOcclusionRays) {
+    SceneDesc scene = lit_scene();
+    EXPECT_TRUE(seen_window(scene, still_view(scene), scene.render).cameras.empty());
+    scene.fps = 24;
+    scene.camera_track = parse_scene(R"({"camera": {"track": [
+        {"time": 0, "position": [0, 3, 40], "look_at": [0, 4, -10]},
+        {"time": 1, "position": [5, 4, 30], "look_at": [0, 4, -10]},
+        {"time": 2, "position": [9, 3, 24], "look_at": [2, 4, -10]}]}})",
+                                     "track")
+                             .camera_track;
+    for (int n : {2, 3, 4, 7}) {
+        scene.render.occlusion_frames = n;
+        for (int f = 2; f < 45; ++f) {
+            const SeenWindow a =
+                seen_window(scene, view_at(scene, frame_time(f, 24)), scene.render);
+            const SeenWindow b =
+                seen_window(scene, view_at(scene, frame_time(f + 1, 24)), scene.render);
+            ASSERT_EQ(a.cameras.size(), static_cast<size_t>(n));
+            ASSERT_EQ(b.cameras.size(), static_cast<size_t>(n));
+            for (int i = 1; i < n; ++i) {
+                ASSERT_EQ(a.cameras[i].eye, b.cameras[i - 1].eye) << "n " << n << " frame " << f;
+                ASSERT_EQ(a.cameras[i].up, b.cameras[i - 1].up);
+                ASSERT_EQ(a.heights[i], b.heights[i - 1]);
+            }
+            ASSERT_NE(a.cameras[0].eye, b.cameras[n - 1].eye);
+            // Centred on the frame: as many eyes before its time as after.
+            const glm::dvec3 eye = view_at(scene, frame_time(f, 24)).camera.eye;
+            if (n % 2 == 1) {
+                EXPECT_EQ(a.cameras[n / 2].eye, eye);
+            }
+        }
+    }
+    // All three heights take turns; 1 frame, or a still camera, casts the frame's own rays.
+    scene.render.occlusion_frames = 3;
+    const SeenWindow w = seen_window(scene, view_at(scene, 0.5), scene.render);
+    EXPECT_EQ(std::set<uint8_t>(w.heights.begin(), w.heights.end()).size(), 3u);
+    scene.render.occlusion_frames = 1;
+    EXPECT_TRUE(seen_window(scene, view_at(scene, 0.5), scene.render).cameras.empty());
 }
 
 TEST(DepthOrder, BackToFrontByDistanceFromTheEyeWithTiesByIndex) {
