@@ -26,7 +26,12 @@ class InputError : public std::runtime_error {
     std::vector<Problem> problems_;
 };
 
-// "source: pointer: message" lines, the form every command prints on stderr.
+// A key as one token of a JSON pointer (RFC 6901): "~" as "~0" and "/" as "~1", so a key
+// holding a slash is not read as two keys.
+std::string pointer_token(const std::string& key);
+
+// "source: pointer: message" lines, the form every command prints on stderr. Control
+// characters (a key holding a newline) are printed escaped, so each problem stays one line.
 std::string format_problems(const std::string& source, const std::vector<Problem>& problems);
 
 }  // namespace pleinair

@@ -133,7 +133,7 @@ class Reader {
         if (!v->is_object())
             return fail(key, "expected a number or {\"base\": b, \"var\": v}, got " + describe(*v));
         for (const auto& [k, x] : v->items()) {
-            std::string ptr = pointer(key) + "/" + k;
+            std::string ptr = pointer(key) + "/" + pointer_token(k);
             if (k != "base" && k != "var")
                 problems_.push_back(
                     {ptr, "unknown key (a varied number has \"base\" and \"var\")"});
@@ -268,7 +268,7 @@ class Reader {
             for (const auto& a : f.asked)
                 if (size_t d = edit_distance(k, a); d < best_d) best_d = d, best = &a;
             if (best) msg += " (did you mean \"" + *best + "\"?)";
-            problems_.push_back({f.path + "/" + k, msg});
+            problems_.push_back({f.path + "/" + pointer_token(k), msg});
         }
     }
 };
@@ -397,6 +397,48 @@ class Documenter {
 inline void apply_overrides(json& doc, const std::vector<std::string>& overrides,
                             std::vector<Problem>& problems, std::set<std::string>& overridden);
 
+// The deepest nesting of arrays and objects an input may have. Presets and scenes nest about
+// six deep; the limit keeps a hostile file (100,000 levels) from overflowing the stack in the
+// recursive code that prints and copies JSON values. Fixed: no real input comes near it.
+inline constexpr int kMaxJsonDepth = 64;
+
+// The line where `text` first nests deeper than kMaxJsonDepth, or 0. Brackets in strings and
+// comments do not count.
+inline size_t too_deep_at(const std::string& text) {
+    int depth = 0;
+    size_t line = 1;
+    const size_t n = text.size();
+    for (size_t i = 0; i < n; ++i) {
+        const char c = text[i];
+        if (c == '\n') {
+            ++line;
+        } else if (c == '"') {
+            for (++i; i < n && text[i] != '"'; ++i) {
+                if (text[i] == '\\')
+                    ++i;
+                else if (text[i] == '\n')
+                    ++line;
+            }
+        } else if (c == '/' && i + 1 < n && text[i + 1] == '/') {
+            while (i + 1 < n && text[i + 1] != '\n') ++i;
+        } else if (c == '/' && i + 1 < n && text[i + 1] == '*') {
+            for (i += 2; i + 1 < n && !(text[i] == '*' && text[i + 1] == '/'); ++i)
+                if (text[i] == '\n') ++line;
+            ++i;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxJsonDepth) return line;
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+    return 0;
+}
+
+inline std::string too_deep_message(size_t line) {
+    return "line " + std::to_string(line) + ": nested more than " + std::to_string(kMaxJsonDepth) +
+           " levels deep (the limit for every input)";
+}
+
 // Parses text (comments allowed) into a JSON object and applies "POINTER=VALUE" overrides
 // (VALUE parsed as JSON, else taken as a string), recording their pointers in `overridden` and
 // their problems in `problems`. Throws InputError on a syntax error or a non-object.
@@ -417,7 +459,8 @@ inline json parse_document(const std::string& text, const std::string& source,
         std::string ptr;
         for (size_t i = 0; i + 1 < frames.size(); ++i) {
             ptr.push_back('/');
-            ptr.append(frames[i].array ? std::to_string(frames[i].index) : frames[i].key);
+            ptr.append(frames[i].array ? std::to_string(frames[i].index)
+                                       : pointer_token(frames[i].key));
         }
         return ptr;
     };
@@ -453,17 +496,82 @@ inline json parse_document(const std::string& text, const std::string& source,
         }
         return true;
     };
+    if (const size_t line = too_deep_at(text)) throw InputError(source, "", too_deep_message(line));
+    // Where the parser is: the pointer of the value it is reading.
+    auto at = [&] {
+        std::string ptr;
+        for (const Frame& f : frames) {
+            ptr.push_back('/');
+            ptr.append(f.array ? std::to_string(f.index) : pointer_token(f.key));
+        }
+        return ptr;
+    };
     try {
         doc = json::parse(text, check, true, /*ignore_comments=*/true);
     } catch (const json::parse_error& e) {
         std::string what = e.what();
         auto pos = what.find("] ");
         throw InputError(source, "", pos == std::string::npos ? what : what.substr(pos + 2));
+    } catch (const json::out_of_range& e) {
+        // A number a double cannot hold (1e400): the parser names it, not where it is.
+        std::string what = e.what();
+        const auto q = what.find('\'');
+        const std::string number =
+            q == std::string::npos ? "" : what.substr(q + 1, what.rfind('\'') - q - 1);
+        throw InputError(
+            source, at(),
+            "number out of range: " + number + " (a double holds magnitudes up to about 1.8e308)");
+    } catch (const json::exception& e) {
+        throw InputError(source, at(), e.what());
     }
     if (!doc.is_object())
         throw InputError(source, "", "expected a JSON object, got " + describe(doc));
     apply_overrides(doc, overrides, problems, overridden);
     return doc;
+}
+
+// A JSON pointer's tokens, unescaped.
+inline std::vector<std::string> pointer_tokens(json::json_pointer p) {
+    std::vector<std::string> tokens;
+    for (; !p.empty(); p.pop_back()) tokens.push_back(p.back());
+    std::reverse(tokens.begin(), tokens.end());
+    return tokens;
+}
+
+// Why --set may not write at `pointer` in `doc`, or "". Writing there creates what is missing,
+// and an array index pads the array with nulls up to it: an index past an array's end (or
+// into an array that does not exist yet, other than 0) would allocate without bound.
+inline std::string override_path_problem(const json& doc, const json::json_pointer& pointer) {
+    const json* cur = &doc;
+    std::string path;
+    for (const std::string& token : pointer_tokens(pointer)) {
+        const bool index =
+            !token.empty() && token.find_first_not_of("0123456789") == std::string::npos;
+        if (cur && cur->is_array()) {
+            if (token == "-") return "";  // appends
+            if (!index) return "\"" + token + "\" is not an index of the array " + path;
+            const size_t size = cur->size();
+            if (token.size() > 18 || std::stoull(token) > size)
+                return "index " + token + " is past the end of " + (path.empty() ? "/" : path) +
+                       ", which has " + std::to_string(size) +
+                       (size == 1 ? " element" : " elements");
+            cur = std::stoull(token) < size ? &(*cur)[std::stoull(token)] : nullptr;
+        } else if (cur && cur->is_object()) {
+            const auto it = cur->find(token);
+            cur = it == cur->end() ? nullptr : &*it;
+        } else if (cur && !cur->is_null()) {
+            return (path.empty() ? "/" : path) + " holds a " + cur->type_name() +
+                   ", which has no \"" + token + "\"";
+        } else {
+            // Created by the write: an index makes an array, padded up to it.
+            if (index && token != "0")
+                return path + " does not exist, so only index 0 can start it";
+            cur = nullptr;
+        }
+        path.push_back('/');
+        path.append(pointer_token(token));
+    }
+    return "";
 }
 
 // Applies "POINTER=VALUE" overrides (VALUE parsed as JSON, else taken as a string), recording
@@ -479,10 +587,19 @@ inline void apply_overrides(json& doc, const std::vector<std::string>& overrides
             continue;
         }
         std::string value = o.substr(eq + 1);
+        if (const size_t line = too_deep_at(value)) {
+            problems.push_back({ptr, "--set value " + too_deep_message(line)});
+            continue;
+        }
         json v = json::parse(value, nullptr, false);
         if (v.is_discarded()) v = value;
         try {
-            doc[json::json_pointer(ptr)] = v;
+            const json::json_pointer pointer(ptr);
+            if (std::string why = override_path_problem(doc, pointer); !why.empty()) {
+                problems.push_back({ptr, "--set cannot place a value here: " + why});
+                continue;
+            }
+            doc[pointer] = v;
             overridden.insert(ptr);
         } catch (const json::exception&) {
             problems.push_back({ptr, "--set cannot place a value here"});

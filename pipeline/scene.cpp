@@ -393,7 +393,7 @@ void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
                 {"/materials", "expected an object of materials, got " + describe(*it)});
         } else {
             for (const auto& [name, m] : it->items()) {
-                std::string ptr = "/materials/" + name;
+                std::string ptr = "/materials/" + pointer_token(name);
                 if (!m.is_object()) {
                     problems.push_back({ptr, "expected an object, got " + describe(m)});
                     continue;
@@ -555,7 +555,7 @@ void parse_groups(const json& doc, SceneDesc& s, std::vector<Problem>& problems,
                       return;
                   }
                   for (const auto& [name, w] : fam->items()) {
-                      std::string fptr = ptr + "/families/" + name;
+                      std::string fptr = ptr + "/families/" + pointer_token(name);
                       if (!w.is_number() || !(w.get<double>() >= 0)) {
                           problems.push_back({fptr, "expected a weight >= 0, got " + describe(w)});
                           continue;
@@ -584,7 +584,7 @@ void parse_families(const json& doc, const std::string& source, SceneDesc& s,
         problems.push_back({"/families", "expected an object of families, got " + describe(*fam)});
     if (fam != doc.end() && fam->is_object()) {
         for (const auto& [name, f] : fam->items()) {
-            std::string ptr = "/families/" + name;
+            std::string ptr = "/families/" + pointer_token(name);
             if (!f.is_object()) {
                 problems.push_back({ptr, "expected an object, got " + describe(f)});
                 continue;

@@ -3,6 +3,10 @@
 #include <tbb/global_control.h>
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
 #include <functional>
 #include <iostream>
 #include <memory>
@@ -15,6 +19,33 @@
 namespace {
 
 using namespace pleinair;
+
+// A whole number from 0 to `max`, in digits: CLI11 alone would read "-1" into an unsigned
+// option as its largest value and clamp a number past the type's range to it.
+CLI::Validator whole_number(uint64_t max) {
+    return CLI::Validator(
+        [max](std::string& s) -> std::string {
+            const std::string expected = "expected a whole number from 0 to " + std::to_string(max);
+            if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos)
+                return expected + ", got " + s;
+            errno = 0;
+            const unsigned long long v = std::strtoull(s.c_str(), nullptr, 10);
+            if (errno == ERANGE || v > max) return expected + ", got " + s;
+            return "";
+        },
+        "0.." + std::to_string(max));
+}
+
+// A finite number: "nan" and "inf" read as doubles, and would flow into every output.
+const CLI::Validator kFinite(
+    [](std::string& s) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(s.c_str(), &end);
+        if (end == s.c_str() || *end != '\0' || !std::isfinite(v))
+            return "expected a finite number, got " + s;
+        return "";
+    },
+    "FINITE");
 
 // A subcommand and what runs it.
 struct Command {
@@ -29,7 +60,8 @@ Command add_tree(CLI::App& app) {
         app.add_subcommand("tree", "Grow one tree: meshes (OBJ, PLY) and leaf particles (PLY)");
     t->add_option("--preset", c->preset, "Preset name (see `pleinair presets`) or JSON file")
         ->required();
-    t->add_option("--seed", c->seed, "Random seed; the same seed gives the same bytes");
+    t->add_option("--seed", c->seed, "Random seed; the same seed gives the same bytes")
+        ->check(whole_number(UINT64_MAX));
     t->add_option("-o,--out", c->out, "Output directory");
     t->add_flag("--stats", c->stats, "Print one JSON line: counts, bounding box, median time");
     t->add_option("--repeat", c->repeat, "Generations to time for --stats")
@@ -39,8 +71,10 @@ Command add_tree(CLI::App& app) {
     t->add_option("--save-preset", c->save_preset, "Write the fully resolved parameters to FILE");
     t->add_option("--position", c->position, "Where the tree stands: x,y,z")
         ->delimiter(',')
-        ->expected(3);
-    t->add_option("--id", c->id, "Tree id stored in every particle (seeds the painter's tint)");
+        ->expected(3)
+        ->check(kFinite);
+    t->add_option("--id", c->id, "Tree id stored in every particle (seeds the painter's tint)")
+        ->check(whole_number(UINT32_MAX));
     auto no_lod = std::make_shared<bool>(false);
     t->add_flag("--no-lod", *no_lod, "Skip the low-detail mesh");
 
@@ -57,7 +91,7 @@ Command add_family(CLI::App& app) {
         "family", "Grow N members of a family, seeds derived from one base seed");
     f->add_option("--preset", c->preset, "Preset name or JSON file")->required();
     f->add_option("--count", c->count, "Number of members")->check(CLI::Range(1, 100000));
-    f->add_option("--seed", c->seed, "Base seed");
+    f->add_option("--seed", c->seed, "Base seed")->check(whole_number(UINT64_MAX));
     f->add_option("-o,--out", c->out,
                   "Output directory (one folder per member), or an image path (.png, .tif, .exr) "
                   "for a painted contact sheet")
@@ -86,8 +120,9 @@ Command add_render(CLI::App& app) {
     r->add_option("--set", c->set, "Override a scene key: POINTER=VALUE, e.g. /camera/fov=30");
     auto time = std::make_shared<double>(0);
     auto frame = std::make_shared<int>(0);
-    CLI::Option* time_opt = r->add_option(
-        "--time", *time, "Seconds into an animated scene (its camera and sun tracks)");
+    CLI::Option* time_opt =
+        r->add_option("--time", *time, "Seconds into an animated scene (its camera and sun tracks)")
+            ->check(kFinite);
     CLI::Option* frame_opt =
         r->add_option("--frame", *frame, "Frame of an animated scene, from 1 at the scene's fps");
 

@@ -80,6 +80,40 @@ TEST(Cli, UsageErrorsExitTwo) {
     EXPECT_NE(help.out.find("--preset"), std::string::npos);
 }
 
+// Numbers on the command line are checked as the files' are: a seed or an id is a whole
+// number in its type's range (CLI11 alone wrapped -1 and clamped 2^64 to the largest seed),
+// a position or a time is finite (NaN went into every OBJ, PLY and tree.json).
+TEST(Cli, CommandLineNumbersAreCheckedAndNothingIsWritten) {
+    auto dir = test::temp_dir("cli-numbers");
+    const std::string out = " -o " + (dir / "out").string();
+    const std::pair<const char*, const char*> cases[] = {
+        {"tree --preset oak --seed -1",
+         "pleinair: --seed: expected a whole number from 0 to 18446744073709551615, got -1"},
+        {"tree --preset oak --seed 18446744073709551616",
+         "pleinair: --seed: expected a whole number from 0 to 18446744073709551615, got "
+         "18446744073709551616"},
+        {"family --preset oak --seed 1e3",
+         "pleinair: --seed: expected a whole number from 0 to 18446744073709551615, got 1e3"},
+        {"tree --preset oak --id 4294967296",
+         "pleinair: --id: expected a whole number from 0 to 4294967295, got 4294967296"},
+        {"tree --preset oak --position nan,0,0",
+         "pleinair: --position: expected a finite number, got nan"},
+        {"tree --preset oak --position 0,0,-inf",
+         "pleinair: --position: expected a finite number, got -inf"},
+        {"render grove --time inf", "pleinair: --time: expected a finite number, got inf"},
+    };
+    for (const auto& [args, message] : cases) {
+        auto r = run_pleinair(std::string(args) + out);
+        EXPECT_EQ(r.exit_code, 2) << args;
+        EXPECT_EQ(r.err, std::string(message) + " (see --help)\n") << args;
+        EXPECT_FALSE(fs::exists(dir / "out")) << args;
+    }
+    // The largest seed is a seed.
+    auto r = run_pleinair("tree --preset shrub --seed 18446744073709551615" + out);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    fs::remove_all(dir);
+}
+
 TEST(Cli, PresetsListsEveryShippedFamily) {
     auto r = run_pleinair("presets");
     ASSERT_EQ(r.exit_code, 0);

@@ -84,6 +84,51 @@ TEST(Presets, DuplicateKeysAreErrors) {
     }
 }
 
+// Hostile JSON: each class is one line naming the file and, where the parser knows it, the
+// key. Nesting 100,000 deep used to overflow the stack while the message was built; a number
+// past a double's range gave the JSON library's raw message and exit 1; a key holding "/" was
+// reported as two keys and one holding a newline printed over two lines.
+TEST(Presets, HostileJsonIsOneLineNamingWhere) {
+    const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+    EXPECT_EQ(problems_of("{\"trunk\":\n" + deep + "}"),
+              std::vector<std::string>{"presets/trees/oak.json: line 2: nested more than 64 "
+                                       "levels deep (the limit for every input)"});
+    // Brackets in strings and comments do not count; 64 levels pass the depth check.
+    const std::string ok = std::string(63, '[') + std::string(63, ']');
+    const auto shallow = problems_of("{\"x\": \"" + std::string(200, '[') + "\", // [[[[\n" +
+                                     "\"trunk\": " + ok + "}");
+    ASSERT_EQ(shallow.size(), 2u);
+    EXPECT_EQ(shallow[0],
+              "presets/trees/oak.json: /trunk: expected an object, got [[[[[[[[[[["
+              "[[[[[[[[[[[[[[[[[[[[[[[[[[...");
+    EXPECT_EQ(problems_of(R"({"trunk": {"taper": [1, 2, 1e400]}})"),
+              std::vector<std::string>{"presets/trees/oak.json: /trunk/taper/2: number out of "
+                                       "range: 1e400 (a double holds magnitudes up to about "
+                                       "1.8e308)"});
+    EXPECT_EQ(problems_of(R"({"trunk": {"a/b~c": 1}})"),
+              std::vector<std::string>{"presets/trees/oak.json: /trunk/a~1b~0c: unknown key"});
+    EXPECT_EQ(problems_of("{\"trunk\": {\"new\\nline\": 1}}"),
+              std::vector<std::string>{"presets/trees/oak.json: /trunk/new\\nline: unknown key"});
+    // --set: a value nested too deep, and an index that would allocate without bound.
+    EXPECT_EQ(problems_of("{}", {"/trunk=" + deep}),
+              std::vector<std::string>{"presets/trees/oak.json: /trunk: --set value line 1: "
+                                       "nested more than 64 levels deep (the limit for every "
+                                       "input)"});
+    try {
+        parse_scene(R"({"families": {"a": {"preset": "oak"}}, "trees": [{"family": "a"}]})",
+                    "s.json", {"/trees/99999999999/seed=3", "/trees/1/seed=3", "/new/7=1"});
+        ADD_FAILURE() << "an index past the end went through";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "s.json: /trees/99999999999/seed: --set cannot place a value here: index "
+                  "99999999999 is past the end of /trees, which has 1 element\n"
+                  "s.json: /new/7: --set cannot place a value here: /new does not exist, so "
+                  "only index 0 can start it\n"
+                  // Just past the end appends: a tree with a seed and no family.
+                  "s.json: /trees/1/family: no family \"\" in /families (have: a)");
+    }
+}
+
 TEST(Presets, WrongTypesSayWhatWasExpected) {
     EXPECT_EQ(problems_of(R"({"trunk": {"max_steps": "ten"}})"),
               std::vector<std::string>{"presets/trees/oak.json: /trunk/max_steps: expected a "
