@@ -10,6 +10,11 @@
 
 namespace pleinair {
 
+double scatter_grid_cells(const ScatterParams& p) {
+    const double cells = std::max(1.0, std::ceil(2 * p.radius / (p.min_distance / std::sqrt(2.0))));
+    return cells * cells;
+}
+
 std::vector<ScatteredTree> scatter_trees(const TerrainParams& terrain, uint64_t terrain_seed,
                                          const ScatterParams& p, uint64_t seed,
                                          uint64_t group_key) {
@@ -22,7 +27,7 @@ std::vector<ScatteredTree> scatter_trees(const TerrainParams& terrain, uint64_t 
     // Grid cells of r / sqrt(2) hold at most one point.
     const double cell = r / std::sqrt(2.0);
     const double cells = std::max(1.0, std::ceil(2 * R / cell));
-    if (cells * cells > 4e6) return out;  // absurd ratio of region to spacing
+    if (!(scatter_grid_cells(p) <= kMaxScatterCells)) return out;  // the scene refuses these
     const int n = static_cast<int>(cells);
     std::vector<int> grid(static_cast<size_t>(n) * n, -1);
     std::vector<glm::dvec2> points;  // relative to the region's corner

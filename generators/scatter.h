@@ -30,6 +30,12 @@ struct ScatteredTree {
     double scale = 1;
 };
 
+// Bridson's background grid holds cells of min_distance / sqrt(2) over the region's square;
+// past kMaxScatterCells of them (16 MB of grid) scatter_trees refuses, and a scene refuses the
+// group up front (pipeline/scene.cpp), naming both numbers.
+inline constexpr double kMaxScatterCells = 4e6;
+double scatter_grid_cells(const ScatterParams& params);
+
 // Pure in (terrain, params, seed, group key). Bridson's algorithm with 30 candidates per
 // active point; points that fail the slope or water test are kept as blockers but not planted,
 // so the spacing holds everywhere. A region with no room gives an empty list.

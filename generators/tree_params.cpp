@@ -105,6 +105,16 @@ std::vector<std::string> validate(const TreeParams& params) {
     };
     cross(params.branches, "branches");
     cross(params.twigs, "twigs");
+    // A pull needs a direction: a zero one was normalised to nothing and quietly ignored.
+    auto pull = [&](const Tropism& t, const char* name) {
+        if (t.direction == glm::dvec3(0.0) && (t.strength.base != 0 || t.strength.var != 0))
+            v.problems.push_back(std::string("/") + name +
+                                 "/tropism/direction: must not be [0, 0, 0] while the strength "
+                                 "is not 0");
+    };
+    pull(params.branches.tropism, "branches");
+    pull(params.twigs.tropism, "twigs");
+    pull(params.leaves.tropism, "leaves");
     return v.problems;
 }
 

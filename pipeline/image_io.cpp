@@ -45,6 +45,14 @@ bool is_image_path(const fs::path& path) {
     return e == ".png" || e == ".tif" || e == ".tiff" || e == ".exr";
 }
 
+bool is_other_image_path(const fs::path& path) {
+    static const char* const kOthers[] = {".jpg", ".jpeg", ".bmp", ".gif",  ".webp", ".tga",
+                                          ".hdr", ".jp2",  ".dpx", ".heic", ".avif", ".ppm",
+                                          ".pnm", ".psd",  ".ico", ".jxl"};
+    const std::string e = lower_ext(path);
+    return std::find(std::begin(kOthers), std::end(kOthers), e) != std::end(kOthers);
+}
+
 namespace {
 
 uint8_t srgb8_exact(float v) {

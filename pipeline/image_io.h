@@ -15,6 +15,9 @@ namespace pleinair {
 
 // True for .png, .tif, .tiff and .exr (any case).
 bool is_image_path(const std::filesystem::path& path);
+// True for the extension of an image format pleinair does not write (.jpg, .bmp, .webp, ...):
+// a path a user meant as an image, not as a folder.
+bool is_other_image_path(const std::filesystem::path& path);
 
 // Throws InputError for an unsupported extension (before anything is written) and
 // std::runtime_error naming the file if encoding or any write fails; no partial file remains

@@ -479,6 +479,15 @@ void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
                   rock.strokes.particles_per_cluster = 3;
                   visit_rock(rock, r);
                   visit_strokes(rock.strokes, r);
+                  const glm::dvec3 sc = rock.params.scale;
+                  if (!(sc.x > 0 && sc.y > 0 && sc.z > 0 && std::isfinite(sc.x + sc.y + sc.z)))
+                      problems.push_back(
+                          {ptr + "/scale", "expected three finite numbers > 0, got [" +
+                                               format_number(sc.x) + ", " + format_number(sc.y) +
+                                               ", " + format_number(sc.z) + "]"});
+                  if (!(rock.params.radius > 0))
+                      problems.push_back({ptr + "/radius",
+                                          "must be > 0, got " + format_number(rock.params.radius)});
                   rock.material = material(rock.material_name, ptr + "/material");
                   s.rocks.push_back(rock);
               });
@@ -570,6 +579,15 @@ void parse_groups(const json& doc, SceneDesc& s, std::vector<Problem>& problems,
                       if (!found)
                           problems.push_back({fptr, "no family \"" + name + "\" in /families"});
                   }
+                  const double cells = scatter_grid_cells(g.params);
+                  if (!(cells <= kMaxScatterCells))
+                      problems.push_back(
+                          {ptr + "/min_distance",
+                           "too small for the radius: the Poisson-disk grid would have " +
+                               std::to_string(static_cast<uint64_t>(std::min(cells, 1e18))) +
+                               " cells (the limit is " +
+                               std::to_string(static_cast<uint64_t>(kMaxScatterCells)) +
+                               "); raise min_distance or split the group"});
                   // No tree with its feet in the water.
                   if (s.water.present) g.params.water_level = s.water.level + 0.05;
                   if (!g.families.empty()) s.groups.push_back(std::move(g));
@@ -616,6 +634,12 @@ void parse_families(const json& doc, const std::string& source, SceneDesc& s,
                 load_into(problems, source, ptr + "/" + key, [&] {
                     ShaderPreset sp = load_shader_preset(near_scene(shader_name, source), source,
                                                          ptr + "/" + key);
+                    if (sp.has_surface)
+                        throw InputError(source, ptr + "/" + key,
+                                         "shader \"" + shader_name +
+                                             "\" has a \"surface\" section, which only a "
+                                             "material's strokes read; leaves and bark would "
+                                             "ignore it");
                     params = sp.params;
                     std::string pal = palette_name.empty() ? sp.palette : palette_name;
                     if (pal.empty())

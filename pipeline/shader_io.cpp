@@ -163,6 +163,10 @@ ShaderPreset parse_shader_preset(const std::string& text, const std::string& sou
                                                               format_number(p.stroke_feather_min) +
                                                               "), got " +
                                                               format_number(p.stroke_feather_max)});
+    if (p.dist_value_min > p.dist_value_max)
+        problems.push_back({"/distance/dist_value_max",
+                            "must be >= dist_value_min (" + format_number(p.dist_value_min) +
+                                "), got " + format_number(p.dist_value_max)});
     mark_overrides(problems, overridden);
     if (!problems.empty()) throw InputError(source, problems);
     return out;

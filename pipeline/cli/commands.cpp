@@ -33,6 +33,14 @@ TreeParams load(const std::string& preset, const std::vector<std::string>& set, 
     return p;
 }
 
+// --save-preset FILE: the resolved parameters, its folder created as -o creates its own.
+void save_preset(const std::string& file, const TreeParams& params) {
+    if (file.empty()) return;
+    if (fs::path parent = fs::path(file).parent_path(); !parent.empty())
+        fs::create_directories(parent);
+    write_file_atomic(file, save_tree_params(params));
+}
+
 // Refuses an output folder that is not ours to replace, before any work is done.
 void check_out_dir(const std::string& out, const std::string& marker) {
     if (!out.empty()) check_output_folder(out, marker);
@@ -47,10 +55,15 @@ nlohmann::ordered_json mesh_counts(const QuadMesh& m) {
 int run_tree(const TreeCommand& cmd) {
     std::string name;
     TreeParams params = load(cmd.preset, cmd.set, name);
+    if (is_image_path(cmd.out) || is_other_image_path(cmd.out))
+        throw InputError("-o", "",
+                         "\"" + cmd.out +
+                             "\": a tree is written as a folder of meshes and particles; give "
+                             "a name without an image extension (family -o paints a sheet)");
     check_out_dir(cmd.out, "tree.json");
     if (!cmd.position.empty() && cmd.position.size() != 3)
         throw InputError("--position", "", "expected x,y,z");
-    if (!cmd.save_preset.empty()) write_file_atomic(cmd.save_preset, save_tree_params(params));
+    save_preset(cmd.save_preset, params);
 
     TreeOptions options;
     options.tree_id = cmd.id;
@@ -145,12 +158,17 @@ int paint_sheet(const FamilyCommand& cmd, const TreeParams& params, const std::s
 int run_family(const FamilyCommand& cmd) {
     std::string name;
     TreeParams params = load(cmd.preset, cmd.set, name);
+    if (is_other_image_path(cmd.out))
+        throw InputError("-o", "",
+                         "\"" + cmd.out +
+                             "\": a contact sheet is written as .png, .tif, .tiff or .exr; a "
+                             "folder of members needs a name without an image extension");
     if (is_image_path(cmd.out)) {
-        if (!cmd.save_preset.empty()) write_file_atomic(cmd.save_preset, save_tree_params(params));
+        save_preset(cmd.save_preset, params);
         return paint_sheet(cmd, params, name);
     }
     check_out_dir(cmd.out, "family.json");
-    if (!cmd.save_preset.empty()) write_file_atomic(cmd.save_preset, save_tree_params(params));
+    save_preset(cmd.save_preset, params);
     if (cmd.out.empty()) return 0;
     std::vector<Tree> trees = generate_family(params, cmd.seed, cmd.count);
     write_family(trees, name, cmd.seed, cmd.out);

@@ -114,6 +114,26 @@ TEST(Cli, CommandLineNumbersAreCheckedAndNothingIsWritten) {
     fs::remove_all(dir);
 }
 
+// An output that names an image where a folder is written (or a format pleinair does not
+// write) is refused before anything exists; --save-preset creates its folder as -o does.
+TEST(Cli, OutputsAreWhatTheirNamesSay) {
+    auto dir = test::temp_dir("cli-outputs");
+    auto r = run_pleinair("family --preset oak --count 2 -o " + (dir / "s.jpg").string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "-o: \"" + (dir / "s.jpg").string() +
+                         "\": a contact sheet is written as .png, .tif, .tiff or .exr; a folder "
+                         "of members needs a name without an image extension\n");
+    EXPECT_FALSE(fs::exists(dir / "s.jpg"));
+    r = run_pleinair("tree --preset oak -o " + (dir / "t.png").string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_FALSE(fs::exists(dir / "t.png"));
+    const fs::path saved = dir / "new" / "folder" / "shrub.json";
+    r = run_pleinair("tree --preset shrub --save-preset " + saved.string());
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(fs::is_regular_file(saved));
+    fs::remove_all(dir);
+}
+
 TEST(Cli, PresetsListsEveryShippedFamily) {
     auto r = run_pleinair("presets");
     ASSERT_EQ(r.exit_code, 0);

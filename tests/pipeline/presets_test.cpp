@@ -129,6 +129,51 @@ TEST(Presets, HostileJsonIsOneLineNamingWhere) {
     }
 }
 
+// Values that were accepted and then quietly ignored, or quietly did nothing, are refused with
+// the key and what was expected.
+TEST(Presets, ValuesThatWouldBeIgnoredAreRefused) {
+    auto scene_problem = [](const std::string& text) -> std::string {
+        try {
+            parse_scene(text, "s.json");
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "";
+    };
+    try {
+        parse_shader_preset(
+            R"({"palette": "corot-foliage", "distance": {"dist_value_min": 0.8, "dist_value_max": 0.2}})",
+            "leaves.json");
+        ADD_FAILURE() << "dist_value_min above dist_value_max went through";
+    } catch (const InputError& e) {
+        EXPECT_EQ(
+            std::string(e.what()),
+            "leaves.json: /distance/dist_value_max: must be >= dist_value_min (0.8), got 0.2");
+    }
+    EXPECT_EQ(
+        problems_of(R"({"branches": {"tropism": {"direction": [0, 0, 0], "strength": 0.4}}})"),
+        std::vector<std::string>{"presets/trees/oak.json: /branches/tropism/direction: must "
+                                 "not be [0, 0, 0] while the strength is not 0"});
+    EXPECT_TRUE(problems_of(R"({"branches": {"tropism": {"direction": [0, 0, 0], "strength": 0}}})")
+                    .empty());
+    const std::string land = R"("camera": {"position": [0, 3, 40], "look_at": [0, 2, 0]},
+        "materials": {"grass": {"shader": "grass"}, "rock": {"shader": "rock"}},
+        "terrain": {"seed": 1, "min": [-50, -50], "max": [50, 50], "material": "grass"},)";
+    EXPECT_EQ(scene_problem("{" + land + R"("rocks": [{"position": [0, 0, 0], "scale": [1, 0, -1],
+                                          "radius": 0, "material": "rock"}]})"),
+              "s.json: /rocks/0/scale: expected three finite numbers > 0, got [1, 0, -1]\n"
+              "s.json: /rocks/0/radius: must be > 0, got 0");
+    EXPECT_EQ(scene_problem("{" + land + R"("families": {"oak": {"preset": "oak"}},
+        "groups": [{"center": [0, 0], "radius": 10000, "min_distance": 1, "families": {"oak": 1}}]})"),
+              "s.json: /groups/0/min_distance: too small for the radius: the Poisson-disk grid "
+              "would have 800041225 cells (the limit is 4000000); raise min_distance or split "
+              "the group");
+    EXPECT_EQ(scene_problem("{" + land +
+                            R"("families": {"oak": {"preset": "oak", "leaf_shader": "grass"}}})"),
+              "s.json: /families/oak/leaf_shader: shader \"grass\" has a \"surface\" section, "
+              "which only a material's strokes read; leaves and bark would ignore it");
+}
+
 TEST(Presets, WrongTypesSayWhatWasExpected) {
     EXPECT_EQ(problems_of(R"({"trunk": {"max_steps": "ten"}})"),
               std::vector<std::string>{"presets/trees/oak.json: /trunk/max_steps: expected a "
