@@ -765,6 +765,65 @@ json resolve_extends(json doc, const std::string& source, int depth = 0) {
 
 }  // namespace
 
+namespace {
+
+// Every coordinate the scene places, against kMaxWorldCoordinate (scene.h). Read after the
+// keys, so each is finite already; extents (a rock's size, a group's disc) count with their
+// centres.
+void check_world_range(const SceneDesc& s, std::vector<Problem>& problems) {
+    auto within = [](double v) { return std::abs(v) <= kMaxWorldCoordinate; };
+    auto check = [&](const std::string& ptr, std::initializer_list<double> values) {
+        for (double v : values)
+            if (!within(v)) {
+                problems.push_back({ptr,
+                                    "beyond the world pleinair supports: every coordinate "
+                                    "within +-" +
+                                        format_number(kMaxWorldCoordinate) + ", got " +
+                                        format_number(v)});
+                return;
+            }
+    };
+    auto vec3 = [&](const std::string& ptr, const glm::dvec3& v, double extent = 0) {
+        const double e = std::abs(extent);
+        check(ptr, {v.x - e, v.x + e, v.y - e, v.y + e, v.z - e, v.z + e});
+    };
+    if (s.camera_track.keys.empty()) {
+        vec3("/camera/position", s.camera_params.position);
+        vec3("/camera/look_at", s.camera_params.look_at);
+    }
+    for (size_t i = 0; i < s.camera_track.keys.size(); ++i) {
+        const std::string ptr = "/camera/track/" + std::to_string(i);
+        vec3(ptr + "/position", s.camera_track.keys[i].position);
+        vec3(ptr + "/look_at", s.camera_track.keys[i].look_at);
+    }
+    for (size_t i = 0; i < s.trees.size(); ++i)  // the explicit ones: groups come later
+        vec3("/trees/" + std::to_string(i) + "/position", s.trees[i].position);
+    for (size_t i = 0; i < s.rocks.size(); ++i) {
+        const RockDesc& r = s.rocks[i];
+        const glm::dvec3 sc = r.params.scale;
+        vec3("/rocks/" + std::to_string(i) + "/position", r.position,
+             r.params.radius * std::max({sc.x, sc.y, sc.z}));
+    }
+    if (s.terrain.present) {
+        const TerrainParams& t = s.terrain.params;
+        check("/terrain/min", {t.min.x, t.min.y});
+        check("/terrain/max", {t.max.x, t.max.y});
+        check("/terrain/base_height", {t.base_height});
+        for (size_t i = 0; i < t.hills.size(); ++i)
+            check("/terrain/hills/" + std::to_string(i),
+                  {t.hills[i].center.x, t.hills[i].center.y, t.base_height + t.hills[i].height});
+    }
+    if (s.water.present) check("/water/level", {s.water.level});
+    for (size_t i = 0; i < s.groups.size(); ++i) {
+        const ScatterParams& g = s.groups[i].params;
+        check("/groups/" + std::to_string(i) + "/center",
+              {g.center.x - g.radius, g.center.x + g.radius, g.center.y - g.radius,
+               g.center.y + g.radius});
+    }
+}
+
+}  // namespace
+
 SceneDesc parse_scene(const std::string& text, const std::string& source,
                       const std::vector<std::string>& overrides) {
     std::vector<Problem> problems;
@@ -805,6 +864,7 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
     parse_families(doc, source, s, problems, plain);
     parse_trees(doc, s, problems, plain);
     parse_groups(doc, s, problems, plain);
+    check_world_range(s, problems);
     mark_overrides(problems, overridden);
     if (!problems.empty()) throw InputError(source, problems);
 

@@ -144,6 +144,13 @@ struct SceneDesc {
     bool animated() const { return !camera_track.keys.empty() || !sun_track.empty(); }
 };
 
+// pleinair's world: every coordinate a scene places (the camera and its track, trees, rocks,
+// the terrain, the water, groups) lies within +-kMaxWorldCoordinate units, 100 km at a metre a
+// unit. Float positions there are 8 mm apart, finer than any stroke, and a landscape paints
+// the same picture there as at the origin (tests/pipeline/landscape_test.cpp); beyond it the
+// scene is refused with the key, instead of aborting inside Embree at 1e19.
+inline constexpr double kMaxWorldCoordinate = 1e5;
+
 // Throws InputError listing every problem (file, JSON pointer, expected, found).
 SceneDesc parse_scene(const std::string& text, const std::string& source,
                       const std::vector<std::string>& overrides = {});

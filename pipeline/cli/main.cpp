@@ -15,6 +15,7 @@
 #include "pipeline/cli/commands.h"
 #include "pipeline/error.h"
 #include "pipeline/partial_files.h"
+#include "pipeline/scene.h"
 
 namespace {
 
@@ -47,6 +48,19 @@ const CLI::Validator kFinite(
     },
     "FINITE");
 
+// A world coordinate: finite and within the world a scene may use (scene.h).
+const CLI::Validator kWorldCoordinate(
+    [](std::string& s) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(s.c_str(), &end);
+        if (end == s.c_str() || *end != '\0' || !(std::abs(v) <= kMaxWorldCoordinate))
+            return "expected a finite number within +-" +
+                   std::to_string(static_cast<long long>(kMaxWorldCoordinate)) +
+                   " (the world pleinair supports), got " + s;
+        return "";
+    },
+    "COORDINATE");
+
 // A subcommand and what runs it.
 struct Command {
     CLI::App* app;
@@ -72,7 +86,7 @@ Command add_tree(CLI::App& app) {
     t->add_option("--position", c->position, "Where the tree stands: x,y,z")
         ->delimiter(',')
         ->expected(3)
-        ->check(kFinite);
+        ->check(kWorldCoordinate);
     t->add_option("--id", c->id, "Tree id stored in every particle (seeds the painter's tint)")
         ->check(whole_number(UINT32_MAX));
     auto no_lod = std::make_shared<bool>(false);

@@ -97,9 +97,14 @@ TEST(Cli, CommandLineNumbersAreCheckedAndNothingIsWritten) {
         {"tree --preset oak --id 4294967296",
          "pleinair: --id: expected a whole number from 0 to 4294967295, got 4294967296"},
         {"tree --preset oak --position nan,0,0",
-         "pleinair: --position: expected a finite number, got nan"},
+         "pleinair: --position: expected a finite number within +-100000 (the world pleinair "
+         "supports), got nan"},
         {"tree --preset oak --position 0,0,-inf",
-         "pleinair: --position: expected a finite number, got -inf"},
+         "pleinair: --position: expected a finite number within +-100000 (the world pleinair "
+         "supports), got -inf"},
+        {"tree --preset oak --position 1e7,0,1e7",
+         "pleinair: --position: expected a finite number within +-100000 (the world pleinair "
+         "supports), got 1e7"},
         {"render grove --time inf", "pleinair: --time: expected a finite number, got inf"},
     };
     for (const auto& [args, message] : cases) {

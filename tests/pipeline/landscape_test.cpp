@@ -169,10 +169,11 @@ TEST(Landscape, ShadowsPerFragmentTraceAGridPerSprite) {
 }
 
 // A flat lit ground and nothing to cast a shadow: shadow rays run and find nothing, so the
-// picture is the same bytes as without shadows, near the origin and 1e5 away, with the sun
+// picture is the same bytes as without shadows, near the origin and near the edge of the world
+// (scene.h: kMaxWorldCoordinate), with the sun
 // overhead, at 20 degrees and grazing at 2 degrees.
 TEST(Landscape, LitFlatGroundWithoutCastersHasNoShadowedStroke) {
-    for (double far : {0.0, 1e5})
+    for (double far : {0.0, kMaxWorldCoordinate - 100})
         for (double elevation : {90.0, 20.0, 2.0}) {
             SCOPED_TRACE("far " + std::to_string(far) + ", elevation " + std::to_string(elevation));
             double e = elevation * M_PI / 180;
@@ -203,18 +204,19 @@ TEST(Landscape, LitFlatGroundWithoutCastersHasNoShadowedStroke) {
 
 TEST(Landscape, FarFromTheOriginPaintsTheSamePicture) {
     Frame fn = paint(parse_scene(landscape(kSun), "test"));
-    Frame ff = paint(parse_scene(landscape(kSun, 1e5), "test"));
+    // Near the edge of the world a scene may use (scene.h), the whole landscape inside it.
+    Frame ff = paint(parse_scene(landscape(kSun, kMaxWorldCoordinate - 100), "test"));
     std::vector<uint8_t> near = frame_srgb8(fn);
     std::vector<uint8_t> far = frame_srgb8(ff);
     ASSERT_EQ(near.size(), far.size());
     double sq = 0;
     for (size_t i = 0; i < near.size(); ++i) sq += std::pow(int(near[i]) - int(far[i]), 2);
-    // Float positions 1e5 away are 8 mm apart: strokes move by a fraction of a pixel, and a
+    // Float positions there are 8 mm apart: strokes move by a fraction of a pixel, and a
     // few strokes at the water's edge change sides of the level (measured: 3.9 levels).
     const double rmse = std::sqrt(sq / near.size());
     EXPECT_LT(rmse, 6.0) << "RMSE in 8-bit levels";
     RecordProperty("rmse", std::to_string(rmse));
-    std::printf("RMSE near vs 1e5 away: %.3f levels\n", rmse);
+    std::printf("RMSE near vs 99,900 away: %.3f levels\n", rmse);
 }
 
 TEST(Landscape, SameBytesOnOneAndTwoThreads) {
@@ -244,8 +246,9 @@ TEST(LandscapeHardCases, SunAtTheHorizonAndOverheadCameraUnderGroundOrInATree) {
 }
 
 TEST(LandscapeHardCases, NoRoomForTreesDegenerateRockAndEmptyRegions) {
-    // A group whose disc lies in the pond plants nothing; a rock of radius 0 with a flat
-    // squash; water below every point of the ground emits no stroke.
+    // A group whose disc lies in the pond plants nothing; a rock a tenth of a millimetre
+    // across, squashed flat (one of radius 0 or scale 0 is refused as input); water below every
+    // point of the ground emits no stroke.
     std::string text = landscape(kSun);
     auto replace = [&](const std::string& from, const std::string& to) {
         size_t at = text.find(from);
@@ -255,7 +258,9 @@ TEST(LandscapeHardCases, NoRoomForTreesDegenerateRockAndEmptyRegions) {
     replace(R"("center": [-15.000000, -30.000000], "radius": 14)",
             R"("center": [15, 5], "radius": 2)");
     replace(R"("rocks": [{"seed": 1,)",
-            R"("rocks": [{"radius": 0, "scale": [0, 0, 0], "roughness": 0.9, "seed": 1,)");
+            R"("rocks": [{"radius": 1e-4, "scale": [1, 1e-6, 1], "roughness": 0.9, "seed": 1,)");
+    EXPECT_THROW(parse_scene(text, "test", {"/rocks/0/radius=0"}), InputError);
+    EXPECT_THROW(parse_scene(text, "test", {"/rocks/0/scale=[1, 0, 1]"}), InputError);
     SceneDesc s = parse_scene(text, "test");
     EXPECT_EQ(s.trees.size(), s.explicit_trees);
     BuiltLandscape land = build_landscape(s);

@@ -174,6 +174,36 @@ TEST(Presets, ValuesThatWouldBeIgnoredAreRefused) {
               "which only a material's strokes read; leaves and bark would ignore it");
 }
 
+// Coordinates beyond the supported world (scene.h) are refused with their key; they passed
+// validation and then aborted inside Embree.
+TEST(Presets, CoordinatesBeyondTheWorldAreRefused) {
+    auto problem = [](const std::string& text) -> std::string {
+        try {
+            parse_scene(text, "s.json");
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "";
+    };
+    const std::string head = R"({"camera": {"position": [0, 3, 40], "look_at": [0, 2, 0]},
+        "materials": {"grass": {"shader": "grass"}, "rock": {"shader": "rock"}},
+        "families": {"oak": {"preset": "oak"}},)";
+    EXPECT_EQ(problem(head + R"("trees": [{"family": "oak", "position": [1e19, 0, 0]}]})"),
+              "s.json: /trees/0/position: beyond the world pleinair supports: every coordinate "
+              "within +-100000, got 1e+19");
+    EXPECT_EQ(problem(head + R"("rocks": [{"position": [99999, 0, 0], "radius": 2}]})"),
+              "s.json: /rocks/0/position: beyond the world pleinair supports: every coordinate "
+              "within +-100000, got 100001");
+    EXPECT_EQ(problem(head + R"("terrain": {"min": [-1e20, -50], "max": [50, 50]}})"),
+              "s.json: /terrain/min: beyond the world pleinair supports: every coordinate "
+              "within +-100000, got -1e+20");
+    EXPECT_EQ(problem(R"({"camera": {"position": [0, 3, 4e5], "look_at": [0, 2, 0]}})"),
+              "s.json: /camera/position: beyond the world pleinair supports: every coordinate "
+              "within +-100000, got 400000");
+    // At the edge, a tree 1e5 away is a tree.
+    EXPECT_EQ(problem(head + R"("trees": [{"family": "oak", "position": [1e5, 0, -1e5]}]})"), "");
+}
+
 TEST(Presets, WrongTypesSayWhatWasExpected) {
     EXPECT_EQ(problems_of(R"({"trunk": {"max_steps": "ten"}})"),
               std::vector<std::string>{"presets/trees/oak.json: /trunk/max_steps: expected a "
