@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 #include <limits>
 
+#include "pipeline/composite.h"
 #include "pipeline/image_io.h"
 #include "pipeline/sprites.h"
 #include "test_util.h"
@@ -214,27 +215,49 @@ TEST(PaintHardCases, NormalAlongTheViewAndLimbSeenEndOn) {
     Frame f = paint(s, true, &rep);
     expect_finite(f);
     EXPECT_GT(rep.bark_sprites, 0u);
-    // Leaves whose normal points at the camera.
-    Frame g = paint_hand(s, {hand_tree({{0, 10, 0}, {0.5f, 10, 0}}, {0, 1, 0})});
+    // Bark strokes of a trunk seen end-on still face the camera and paint its top.
+    size_t bark = 0;
+    for (size_t i = 0; i < f.object_id.size(); ++i) bark += f.object_id[i] > 0 && f.alpha[i] > 0.5f;
+    EXPECT_GT(bark, 4u);
+    // Leaves whose normal points at the camera: both painted, lit face-on, over the sky.
+    FrameReport leaf_rep;
+    Frame g = paint_hand(s, {hand_tree({{0, 10, 0}, {0.5f, 10, 0}}, {0, 1, 0})}, &leaf_rep);
     expect_finite(g);
+    EXPECT_EQ(leaf_rep.leaf_sprites, 2u);
+    EXPECT_GT(leaf_rep.fragments, 0u);
+    EXPECT_NE(g.rgba, paint_hand(s, {}).rgba);
 }
 
 TEST(PaintHardCases, OneColourPaletteAndEqualFeatherThresholds) {
     SceneDesc s = parse_scene(scene_text(kCamera, kTrees), "test");
+    const Color one(0.1f, 0.3f, 0.1f);
     for (auto& fam : s.families) {
-        fam.leaf_palette.dark = fam.leaf_palette.mid =
-            fam.leaf_palette.light = {{Color(0.1f, 0.3f, 0.1f)}};
-        fam.leaf_shader.stroke_feather_min = fam.leaf_shader.stroke_feather_max = 0.5f;
-        fam.leaf_shader.sub_stroke_amt = 0;
-        fam.leaf_shader.unique_tint_amt = 0;
+        for (Palette* p : {&fam.leaf_palette, &fam.bark_palette})
+            p->dark = p->mid = p->light = {{one}};
+        for (StrokeShaderParams* p : {&fam.leaf_shader, &fam.bark_shader}) {
+            p->stroke_feather_min = p->stroke_feather_max = 0.5f;
+            p->sub_stroke_amt = 0;
+            p->unique_tint_amt = 0;
+        }
     }
     s.has_atmosphere = false;
-    Frame f = paint(s, true);
+    FrameReport rep;
+    Frame f = paint(s, true, &rep);
     expect_finite(f);
-    // Leaf pixels in front are the palette's one colour blended over what is behind.
-    size_t painted = 0;
-    for (size_t i = 0; i < f.object_id.size(); ++i) painted += f.object_id[i] > 0;
-    EXPECT_GT(painted, 100u);
+    EXPECT_GT(rep.fragments, 0u);
+    // Whatever a stroke's lightness or shadow, the palette has one colour: where the strokes
+    // cover a pixel, it is that colour (to the coverage cutoff), and nowhere is a stroke more
+    // than it over the sky.
+    size_t covered = 0;
+    for (size_t i = 0; i < f.alpha.size(); ++i) {
+        if (!(f.alpha[i] > 0.9999f)) continue;
+        ++covered;
+        const float* px = &f.rgba[4 * i];
+        ASSERT_NEAR(px[0], one.x, 2e-3f) << i;
+        ASSERT_NEAR(px[1], one.y, 2e-3f) << i;
+        ASSERT_NEAR(px[2], one.z, 2e-3f) << i;
+    }
+    EXPECT_GT(covered, 20u);  // 40 when written
 }
 
 TEST(PaintHardCases, EmptySceneIsTheBackground) {
@@ -243,12 +266,25 @@ TEST(PaintHardCases, EmptySceneIsTheBackground) {
     Frame f = paint_hand(s, {}, &rep);
     expect_finite(f);
     EXPECT_EQ(rep.fragments, 0u);
-    // Sky above the horizon is lighter towards the horizon than at the top.
-    auto lum = [&](int x, int y) {
-        const float* p = &f.rgba[4 * (y * f.width + x)];
-        return p[0] + p[1] + p[2];
+    // The frame is the background alone, bit for bit: what paint_background gives under a
+    // stroke layer that lets all light through.
+    StrokeLayer clear;
+    clear.width = f.width, clear.height = f.height;
+    clear.color.assign(3 * static_cast<size_t>(f.width) * f.height, 0.0f);
+    clear.through.assign(static_cast<size_t>(f.width) * f.height, 1.0f);
+    Frame bg = make_frame(s.camera, false);
+    paint_background(s, s.camera, clear, bg);
+    for (size_t i = 0; i < bg.rgba.size(); i += 4)
+        for (int c = 0; c < 3; ++c) ASSERT_EQ(f.rgba[i + c], bg.rgba[i + c]) << i / 4;
+    // The sky lightens from the top of the frame down to the horizon.
+    auto lum = [&](int y) {
+        const float* p = &f.rgba[4 * (y * f.width + f.width / 2)];
+        return 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2];
     };
-    EXPECT_NE(lum(48, 2), lum(48, 62));
+    const Projection horizon = project(s.camera, s.camera.eye + glm::dvec3(0, 0, -1e6));
+    const int h = static_cast<int>(horizon.y);
+    ASSERT_GT(h, 4);
+    EXPECT_GT(lum(h - 2), lum(0) + 0.01f);
 }
 
 TEST(PaintHardCases, CameraLookingStraightUpOrDown) {
@@ -275,7 +311,14 @@ TEST(PaintHardCases, CameraInsideATree) {
     FrameReport rep;
     Frame f = paint(s, true, &rep);
     expect_finite(f);
-    EXPECT_GT(rep.culled, 0u);
+    EXPECT_GT(rep.culled, 0u);  // the leaves behind the eye
+    // Inside a crown the leaves around the eye fill the view, none of them blown up past the
+    // frame: the strokes cover most of it, with the sky still seen through gaps.
+    size_t covered = 0, open = 0;
+    for (float a : f.alpha) covered += a > 0.5f, open += a < 0.99f;
+    EXPECT_GT(rep.leaf_sprites, 0u);
+    EXPECT_GT(3 * covered, f.alpha.size());  // 1,850 of 3,072 pixels when written
+    EXPECT_GT(open, f.alpha.size() / 10);    // 2,317
 }
 
 TEST(ImageOutput, EightBitEncodingEqualsTheTransferFunction) {
