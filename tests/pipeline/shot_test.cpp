@@ -4,6 +4,7 @@
 #include "pipeline/shot.h"
 
 #include <gtest/gtest.h>
+#include <hwy/targets.h>
 #include <tbb/task_arena.h>
 
 #include <cmath>
@@ -243,6 +244,41 @@ TEST(Sprites, TheNextFrameCastsAllButOneOfTheSameOcclusionRays) {
     EXPECT_EQ(std::set<uint8_t>(w.heights.begin(), w.heights.end()).size(), 3u);
     scene.render.occlusion_frames = 1;
     EXPECT_TRUE(seen_window(scene, view_at(scene, 0.5), scene.render).cameras.empty());
+}
+
+// Highway picks the vector target at run time; the bytes must not depend on it. Every target
+// this build holds and this CPU runs paints a still and three frames of a moving shot to the
+// same bits as the first.
+TEST(Shot, SameBytesOnEveryVectorTarget) {
+    SceneDesc scene = lit_scene(R"({"samples": 4})");
+    const Shot still = build_shot(scene);
+    scene.camera_track = parse_scene(R"({"camera": {"track": [
+        {"time": 0, "position": [0, 3, 40], "look_at": [0, 4, -10]},
+        {"time": 1, "position": [5, 4, 30], "look_at": [0, 4, -10]}]}})",
+                                     "track")
+                             .camera_track;
+    const Shot moving = build_shot(scene);
+    auto paint_all = [&] {
+        std::vector<Frame> frames{paint(still)};
+        for (int f : {1, 7, 8})
+            frames.push_back(paint_frame(moving, view_at(moving.scene, frame_time(f, 24)),
+                                         scene_frame_settings(moving.scene)));
+        return frames;
+    };
+    std::vector<Frame> first;
+    int targets = 0;
+    for (int64_t target : hwy::SupportedAndGeneratedTargets()) {
+        SCOPED_TRACE(hwy::TargetName(target));
+        hwy::SetSupportedTargetsForTest(target);
+        std::vector<Frame> frames = paint_all();
+        if (first.empty()) first = frames;
+        for (size_t i = 0; i < frames.size(); ++i)
+            EXPECT_TRUE(same_pixels(frames[i], first[i])) << i;
+        ++targets;
+    }
+    hwy::SetSupportedTargetsForTest(0);
+    EXPECT_GE(targets, 1);
+    RecordProperty("targets", targets);
 }
 
 TEST(DepthOrder, BackToFrontByDistanceFromTheEyeWithTiesByIndex) {
