@@ -22,6 +22,13 @@ Shot oak_shot(const std::string& track) {
                                   "oak"));
 }
 
+// Frames 1 to n.
+std::vector<int> first_frames(int n) {
+    std::vector<int> frames;
+    for (int f = 1; f <= n; ++f) frames.push_back(f);
+    return frames;
+}
+
 TEST(Coherence, AStillCameraWithStillCirclesIsStill) {
     const Shot shot = oak_shot(R"([{"time": 0, "position": [0, 7, 40], "look_at": [0, 7, 0]},
                                    {"time": 0.5, "position": [0, 7, 40], "look_at": [0, 7, 0]}])");
@@ -43,8 +50,7 @@ TEST(Coherence, AStillCameraWithStillCirclesIsStill) {
 TEST(Coherence, ARecedingTreeFadesOverFramesAndKeepsItsSilhouette) {
     const Shot shot = oak_shot(R"([{"time": 0, "position": [0, 7, 15], "look_at": [0, 7, 0]},
                                    {"time": 2, "position": [0, 7, 70], "look_at": [0, 7, 0]}])");
-    std::vector<int> frames;
-    for (int f = 1; f <= 25; ++f) frames.push_back(f);
+    const std::vector<int> frames = first_frames(25);
     const CoherenceReport r = measure_coherence(shot, frames, scene_frame_settings(shot.scene));
     EXPECT_EQ(r.pops, 0u);
     EXPECT_GT(r.steepest_fade, 0.0);   // leaves do fade ...
@@ -64,8 +70,7 @@ TEST(Coherence, OrbitingSwapsStrokesOverFramesNotInOne) {
     const Shot shot = oak_shot(R"([{"time": 0, "position": [20, 6, 0], "look_at": [0, 7, 0]},
                                    {"time": 0.5, "position": [14, 6, 14], "look_at": [0, 7, 0]},
                                    {"time": 1, "position": [0, 6, 20], "look_at": [0, 7, 0]}])");
-    std::vector<int> frames;
-    for (int f = 1; f <= 13; ++f) frames.push_back(f);
+    const std::vector<int> frames = first_frames(13);
     FrameSettings soft = scene_frame_settings(shot.scene), hard = soft;
     hard.render.order_blend_frames = 0;
     const CoherenceReport s = measure_coherence(shot, frames, soft);
@@ -91,8 +96,7 @@ TEST(Coherence, StrokesASilhouetteUncoversAppearOverFrames) {
                     "material": "grass",
                     "strokes": {"particle_spans_u": 40, "particle_spans_v": 40}}})",
                                              "crest"));
-    std::vector<int> frames;
-    for (int f = 1; f <= 13; ++f) frames.push_back(f);
+    const std::vector<int> frames = first_frames(13);
     FrameSettings window = scene_frame_settings(shot.scene), instant = window;
     instant.render.occlusion_frames = 1;
     const CoherenceReport w = measure_coherence(shot, frames, window);

@@ -32,6 +32,16 @@ std::vector<std::string> problems_of(const std::string& text, std::vector<std::s
     return {};
 }
 
+// The problems of a scene as one string ("" when it parses), its source "s.json".
+std::string scene_problem(const std::string& text) {
+    try {
+        parse_scene(text, "s.json");
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
 TEST(Presets, AtLeastSixShipWithDescriptions) {
     auto presets = list_tree_presets();
     ASSERT_GE(presets.size(), 6u);
@@ -132,14 +142,6 @@ TEST(Presets, HostileJsonIsOneLineNamingWhere) {
 // Values that were accepted and then quietly ignored, or quietly did nothing, are refused with
 // the key and what was expected.
 TEST(Presets, ValuesThatWouldBeIgnoredAreRefused) {
-    auto scene_problem = [](const std::string& text) -> std::string {
-        try {
-            parse_scene(text, "s.json");
-        } catch (const InputError& e) {
-            return e.what();
-        }
-        return "";
-    };
     try {
         parse_shader_preset(
             R"({"palette": "corot-foliage", "distance": {"dist_value_min": 0.8, "dist_value_max": 0.2}})",
@@ -177,31 +179,24 @@ TEST(Presets, ValuesThatWouldBeIgnoredAreRefused) {
 // Coordinates beyond the supported world (scene.h) are refused with their key; they passed
 // validation and then aborted inside Embree.
 TEST(Presets, CoordinatesBeyondTheWorldAreRefused) {
-    auto problem = [](const std::string& text) -> std::string {
-        try {
-            parse_scene(text, "s.json");
-        } catch (const InputError& e) {
-            return e.what();
-        }
-        return "";
-    };
     const std::string head = R"({"camera": {"position": [0, 3, 40], "look_at": [0, 2, 0]},
         "materials": {"grass": {"shader": "grass"}, "rock": {"shader": "rock"}},
         "families": {"oak": {"preset": "oak"}},)";
-    EXPECT_EQ(problem(head + R"("trees": [{"family": "oak", "position": [1e19, 0, 0]}]})"),
+    EXPECT_EQ(scene_problem(head + R"("trees": [{"family": "oak", "position": [1e19, 0, 0]}]})"),
               "s.json: /trees/0/position: beyond the world pleinair supports: every coordinate "
               "within +-100000, got 1e+19");
-    EXPECT_EQ(problem(head + R"("rocks": [{"position": [99999, 0, 0], "radius": 2}]})"),
+    EXPECT_EQ(scene_problem(head + R"("rocks": [{"position": [99999, 0, 0], "radius": 2}]})"),
               "s.json: /rocks/0/position: beyond the world pleinair supports: every coordinate "
               "within +-100000, got 100001");
-    EXPECT_EQ(problem(head + R"("terrain": {"min": [-1e20, -50], "max": [50, 50]}})"),
+    EXPECT_EQ(scene_problem(head + R"("terrain": {"min": [-1e20, -50], "max": [50, 50]}})"),
               "s.json: /terrain/min: beyond the world pleinair supports: every coordinate "
               "within +-100000, got -1e+20");
-    EXPECT_EQ(problem(R"({"camera": {"position": [0, 3, 4e5], "look_at": [0, 2, 0]}})"),
+    EXPECT_EQ(scene_problem(R"({"camera": {"position": [0, 3, 4e5], "look_at": [0, 2, 0]}})"),
               "s.json: /camera/position: beyond the world pleinair supports: every coordinate "
               "within +-100000, got 400000");
     // At the edge, a tree 1e5 away is a tree.
-    EXPECT_EQ(problem(head + R"("trees": [{"family": "oak", "position": [1e5, 0, -1e5]}]})"), "");
+    EXPECT_EQ(scene_problem(head + R"("trees": [{"family": "oak", "position": [1e5, 0, -1e5]}]})"),
+              "");
 }
 
 TEST(Presets, WrongTypesSayWhatWasExpected) {
