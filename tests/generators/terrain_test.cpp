@@ -134,9 +134,19 @@ TEST(SurfaceStrokes, PackedValuesRoundTrip) {
     EXPECT_EQ(decode_unorm(encode_unorm(-3.0f)), 0.0f);
     EXPECT_EQ(decode_unorm(encode_unorm(7.0f)), 1.0f);
     EXPECT_LT(glm::length(decode_unit(encode_unit(glm::vec3(0.0f))) - glm::vec3(0, 1, 0)), 1e-4f);
-    EXPECT_EQ(sizeof(glm::vec3) + 3 * sizeof(uint32_t) + 2 * sizeof(uint16_t) + sizeof(float) +
-                  sizeof(uint32_t),
-              36u);
+    // A particle's real footprint, read from SurfaceParticles itself: one element of each of its
+    // arrays, every array as long as the particle count. Packing is what keeps it at 36 bytes.
+    SurfaceParticles emitted;
+    emit_surface_strokes(generate_terrain(two_hills(), 2), SurfaceStrokeParams{}, 5, 1, emitted);
+    ASSERT_GT(emitted.size(), 0u);
+    size_t bytes = 0, arrays = 0;
+    emitted.each_array([&](auto& a) {
+        bytes += sizeof(a[0]);
+        ++arrays;
+        EXPECT_EQ(a.size(), emitted.size());
+    });
+    EXPECT_EQ(arrays, 8u);
+    EXPECT_EQ(bytes, 36u);
 }
 
 TEST(SurfaceStrokes, SectionsAreKeyedAndHardCasesEmitSafely) {

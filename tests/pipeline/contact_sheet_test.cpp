@@ -49,16 +49,22 @@ TEST(ContactSheet, EveryCellHoldsAPaintedTreeAndThreadsDoNotMatter) {
     ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, px.data()));
     int cols, rows;
     sheet_grid(4, 320, 180, cols, rows);
-    // Each cell has dark foliage pixels (a painted tree), not just sky and ground.
+    // Each cell has dark foliage pixels (a painted tree), not just sky and ground, counted
+    // above the band of the seed's label (its dark digits alone would pass otherwise): the
+    // cell's geometry as contact_sheet.cpp lays it out (6 pixels of gap, the label 9 rows
+    // from the cell's foot at this size).
+    const int gap = 6, cell_w = (320 - (cols + 1) * gap) / cols;
+    const int cell_h = (180 - (rows + 1) * gap) / rows;
     for (int cell = 0; cell < 4; ++cell) {
-        int x0 = (cell % cols) * 320 / cols, y0 = (cell / cols) * 180 / rows;
+        const int x0 = gap + (cell % cols) * (cell_w + gap),
+                  y0 = gap + (cell / cols) * (cell_h + gap);
         int dark = 0;
-        for (int y = y0; y < y0 + 180 / rows; ++y)
-            for (int x = x0; x < x0 + 320 / cols; ++x) {
+        for (int y = y0; y < y0 + cell_h - 10; ++y)
+            for (int x = x0; x < x0 + cell_w; ++x) {
                 const uint8_t* p = &px[3 * (y * 320 + x)];
                 dark += p[0] + p[1] + p[2] < 200 && p[1] >= p[2];
             }
-        EXPECT_GT(dark, 50) << "cell " << cell;
+        EXPECT_GT(dark, 100) << "cell " << cell;  // 215-606 when written
     }
     fs::remove_all(dir);
 }
