@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "pipeline/error.h"
+#include "pipeline/paint.h"
 #include "pipeline/presets.h"
 #include "pipeline/scene.h"
 #include "test_util.h"
@@ -33,6 +34,29 @@ TEST(SceneExtends, ShippedShotsAreTheirStillsWithATrack) {
     EXPECT_NE(walk.description, still.description);
     for (const char* shot : {"grove-orbit", "forest-edge-walk", "tree-dolly"})
         EXPECT_TRUE(shipped(shot).animated()) << shot;
+}
+
+// Every scene that ships loads (its presets, shaders and palettes with it), as a user's first
+// `render NAME` does, and holds what a scene needs: something to paint, a camera, and for a
+// shot more than one frame.
+TEST(SceneExtends, EveryShippedSceneLoads) {
+    int scenes = 0;
+    for (const auto& entry : fs::directory_iterator(test::source_dir() / "presets" / "scenes")) {
+        if (entry.path().extension() != ".json") continue;
+        const std::string name = entry.path().stem().string();
+        SCOPED_TRACE(name);
+        SceneDesc s;
+        ASSERT_NO_THROW(s = load_scene(entry.path()));
+        EXPECT_FALSE(s.description.empty());
+        EXPECT_TRUE(!s.trees.empty() || s.terrain.present);
+        EXPECT_GT(s.camera.width, 0);
+        if (s.animated()) {
+            const FrameRange frames = animation_frames(s);
+            EXPECT_GT(frames.last, frames.first);
+        }
+        ++scenes;
+    }
+    EXPECT_GE(scenes, 8);
 }
 
 class Extends : public ::testing::Test {
