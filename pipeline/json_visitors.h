@@ -551,11 +551,12 @@ inline std::string override_path_problem(const json& doc, const json::json_point
             if (token == "-") return "";  // appends
             if (!index) return "\"" + token + "\" is not an index of the array " + path;
             const size_t size = cur->size();
-            if (token.size() > 18 || std::stoull(token) > size)
+            const size_t at = token.size() > 18 ? SIZE_MAX : std::stoull(token);
+            if (at > size)
                 return "index " + token + " is past the end of " + (path.empty() ? "/" : path) +
                        ", which has " + std::to_string(size) +
                        (size == 1 ? " element" : " elements");
-            cur = std::stoull(token) < size ? &(*cur)[std::stoull(token)] : nullptr;
+            cur = at < size ? &(*cur)[at] : nullptr;
         } else if (cur && cur->is_object()) {
             const auto it = cur->find(token);
             cur = it == cur->end() ? nullptr : &*it;

@@ -44,22 +44,31 @@ struct SpriteContext {
     double eye_speed;  // world units per frame
 };
 
+// A particle's stroke on screen at view depth z before the level of detail, in pixels: its
+// width and length (the length times `crest`, Fig. 25), the thinnest enlarged to
+// min_stroke_px with the length in proportion. The one rule for a sprite's size and the
+// heights its occlusion rays start from.
+void stroke_px(const Camera& cam, const RenderSettings& rs, const StrokeShaderParams& p,
+               const SpriteInput& in, double z, float crest, float& w, float& l) {
+    const float jitter = stroke_size_jitter(p, in.label);
+    w = stroke_screen_px(cam, rs, in.width * jitter, z);
+    l = stroke_screen_px(cam, rs, in.length * jitter, z) * crest;
+    const float min_px = rs.min_stroke_px;
+    if (w < min_px) l *= min_px / std::max(w, 1e-12f), w = min_px;
+}
+
 // Size, fade and crest shrink of a sprite on screen; false when nothing of it would show.
 bool sprite_size(const SpriteContext& c, const SpriteMaterial& m, const SpriteInput& in,
                  const Projection& pr, Sprite& out) {
-    const StrokeShaderParams& p = *m.shader;
-    const double z = pr.depth;
-    const float jitter = stroke_size_jitter(p, in.label);
-    float w = stroke_screen_px(c.cam, c.rs, in.width * jitter, z);
-    float l = stroke_screen_px(c.cam, c.rs, in.length * jitter, z);
+    float crest = 1.0f;
     if (in.surface) {
         const SurfaceParticles& S = *in.surface;
         // Fig. 25: a surface seen edge-on keeps only the middle of its sprites' height.
         glm::vec3 to_eye(glm::normalize(c.cam.eye - in.world));
-        l *= crest_factor(glm::dot(S.normal(in.index), to_eye), m.surface->crest_shrink);
+        crest = crest_factor(glm::dot(S.normal(in.index), to_eye), m.surface->crest_shrink);
     }
-    const float min_px = c.rs.min_stroke_px;
-    if (w < min_px) l *= min_px / std::max(w, 1e-12f), w = min_px;
+    float w, l;
+    stroke_px(c.cam, c.rs, *m.shader, in, pr.depth, crest, w, l);
     w *= in.lod.scale, l *= in.lod.scale;
     if (!(w > 0.0f) || !(l > 0.0f) || !std::isfinite(w) || !std::isfinite(l)) return false;
     out.half_w = 0.5f * w;
@@ -209,12 +218,9 @@ struct Counters {
 // rule, without the crest shrink and the survivors' growth).
 double drawn_radius(const Camera& cam, const RenderSettings& rs, const SpriteMaterial& m,
                     const SpriteInput& in, const glm::dvec3& world) {
-    const Projection pr = project(cam, world);
-    const double z = std::max<double>(pr.depth, cam.near_depth);
-    const float jitter = stroke_size_jitter(*m.shader, in.label);
-    double w = stroke_screen_px(cam, rs, in.width * jitter, z);
-    double l = stroke_screen_px(cam, rs, in.length * jitter, z);
-    if (w < rs.min_stroke_px) l *= rs.min_stroke_px / std::max(w, 1e-12), w = rs.min_stroke_px;
+    const double z = std::max<double>(project(cam, world).depth, cam.near_depth);
+    float w, l;
+    stroke_px(cam, rs, *m.shader, in, z, 1.0f, w, l);
     return 0.5 * std::max(w, l) * z / cam.focal_px;
 }
 

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <functional>
 #include <iostream>
+#include <limits>
 #include <memory>
 
 #include "generators/tree.h"
@@ -37,28 +38,27 @@ CLI::Validator whole_number(uint64_t max) {
         "0.." + std::to_string(max));
 }
 
-// A finite number: "nan" and "inf" read as doubles, and would flow into every output.
-const CLI::Validator kFinite(
-    [](std::string& s) -> std::string {
-        char* end = nullptr;
-        const double v = std::strtod(s.c_str(), &end);
-        if (end == s.c_str() || *end != '\0' || !std::isfinite(v))
-            return "expected a finite number, got " + s;
-        return "";
-    },
-    "FINITE");
+// A finite number whose magnitude is at most `limit` ("nan" and "inf" read as doubles, and
+// would flow into every output); `expected` is the message's description of it.
+CLI::Validator finite_number(double limit, const std::string& expected, const std::string& name) {
+    return CLI::Validator(
+        [limit, expected](std::string& s) -> std::string {
+            char* end = nullptr;
+            const double v = std::strtod(s.c_str(), &end);
+            if (end == s.c_str() || *end != '\0' || !(std::abs(v) <= limit))
+                return "expected " + expected + ", got " + s;
+            return "";
+        },
+        name);
+}
 
-// A world coordinate: finite and within the world a scene may use (scene.h).
-const CLI::Validator kWorldCoordinate(
-    [](std::string& s) -> std::string {
-        char* end = nullptr;
-        const double v = std::strtod(s.c_str(), &end);
-        if (end == s.c_str() || *end != '\0' || !(std::abs(v) <= kMaxWorldCoordinate))
-            return "expected a finite number within +-" +
-                   std::to_string(static_cast<long long>(kMaxWorldCoordinate)) +
-                   " (the world pleinair supports), got " + s;
-        return "";
-    },
+const CLI::Validator kFinite =
+    finite_number(std::numeric_limits<double>::max(), "a finite number", "FINITE");
+// A world coordinate: within the world a scene may use (scene.h).
+const CLI::Validator kWorldCoordinate = finite_number(
+    kMaxWorldCoordinate,
+    "a finite number within +-" + std::to_string(static_cast<long long>(kMaxWorldCoordinate)) +
+        " (the world pleinair supports)",
     "COORDINATE");
 
 // A subcommand and what runs it.
