@@ -1,6 +1,7 @@
 # pleinair's two entry points on a fresh Debian 12 machine: `make render` and `make test`.
 # Both install any missing Debian package first (apt-get, as root or through sudo).
 
+SHELL := /bin/bash
 BUILD ?= build
 SAN_BUILD ?= build-sanitize
 JOBS ?= $(shell nproc)
@@ -9,7 +10,12 @@ DEPS := build-essential cmake ninja-build libopenmesh-dev libglm-dev libopenimag
         libgtest-dev libbenchmark-dev libhwy-dev ffmpeg
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps build render test test-sanitize test-farm bench format reference golden clean
+FUZZ_BUILD ?= build-fuzz
+# Seconds each fuzz target runs in `make fuzz` (CI: about a minute each).
+FUZZ_SECONDS ?= 60
+FUZZ_TARGETS := tree_preset shader_preset palette scene set_value particle_file
+
+.PHONY: all deps build render test test-sanitize test-farm fuzz bench format reference golden clean
 
 all: build
 
@@ -47,6 +53,27 @@ test-sanitize: deps
 	    -DPLEINAIR_SANITIZE=ON -DPLEINAIR_BENCH=OFF
 	cmake --build $(SAN_BUILD) -j $(JOBS)
 	cd $(SAN_BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# Every parser fuzzed with libFuzzer under ASan and UBSan (clang), FUZZ_SECONDS each, from the
+# committed seed corpus (new inputs go to a scratch folder, not the repository). A finding stops
+# with the input saved as $(FUZZ_BUILD)/finding-*; minimise it (-minimize_crash=1) and commit
+# it under tests/fuzz/regressions/TARGET/, where every test run replays it.
+fuzz: deps
+	@dpkg-query -W -f='$${Status}\n' clang libfuzzer-14-dev 2>/dev/null | grep -c "install ok installed" | grep -q 2 || \
+	    { $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends clang libfuzzer-14-dev; }
+	CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPLEINAIR_FUZZ=ON
+	cmake --build $(FUZZ_BUILD) -j $(JOBS)
+	@for t in $(FUZZ_TARGETS); do \
+	    mkdir -p $(FUZZ_BUILD)/corpus/$$t && \
+	    echo "fuzz $$t: $(FUZZ_SECONDS) s" && \
+	    PLEINAIR_PRESETS=$(abspath presets) $(FUZZ_BUILD)/tests/fuzz/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) \
+	        -max_len=65536 -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 \
+	        -artifact_prefix=$(FUZZ_BUILD)/finding-$$t- \
+	        $(FUZZ_BUILD)/corpus/$$t tests/fuzz/corpus/$$t \
+	        $$( [ -d tests/fuzz/regressions/$$t ] && echo tests/fuzz/regressions/$$t ) \
+	        2>&1 | grep -E "^(stat::|==|fuzz finding|SUMMARY|Done|#[0-9]+ *DONE)" ; \
+	    test $${PIPESTATUS[0]} -eq 0 || exit 1; \
+	done
 
 bench: build
 	$(BUILD)/tests/pleinair_bench

@@ -38,6 +38,7 @@ enum class Purpose : uint64_t {
     kSurface = 11,    // surface stroke particles, per (surface, span u, span v)
     kScatter = 12,    // tree placement, per group
     kLeafLabel = 13,  // a leaf's label, per (emitter, step)
+    kImported = 14,   // an imported particle's label and random normal, per (file, id)
 };
 
 // PCG32 (O'Neill 2014): small state, good statistics, and fully specified, so every platform

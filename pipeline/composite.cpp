@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -531,7 +532,8 @@ void paint_background(const SceneDesc& scene, const Camera& cam, const StrokeLay
 }
 
 StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins& bins,
-                          const FramePlan& plan, const RenderSettings& rs, Frame& frame) {
+                          const FramePlan& plan, const RenderSettings& rs, Frame& frame,
+                          const std::function<void(const char*, double)>* progress) {
     StrokeLayer out;
     out.width = frame.width, out.height = frame.height;
     out.cutoff = rs.coverage_cutoff;
@@ -544,6 +546,14 @@ StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins
     }
     const int n = rs.samples >= 16 ? 4 : rs.samples >= 4 ? 2 : 1;
     std::vector<uint64_t> tile_fragments(bins.bins.size(), 0);
+    std::atomic<size_t> tiles_done{0};
+    const size_t tiles = bins.bins.size();
+    // Each whole percent of the tiles, once.
+    auto tile_done = [&] {
+        if (!progress || !*progress) return;
+        const size_t d = ++tiles_done;
+        if (d * 100 / tiles != (d - 1) * 100 / tiles) (*progress)("paint", double(d) / tiles);
+    };
     tbb::parallel_for(size_t{0}, bins.bins.size(), [&](size_t tile) {
         const int tx = static_cast<int>(tile % bins.tiles_x);
         const int ty = static_cast<int>(tile / bins.tiles_x);
@@ -555,7 +565,7 @@ StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins
             for (uint32_t idx : bin)
                 tile_fragments[tile] += paint_bare(
                     set.sprites[idx], sprite_span(set.sprites[idx], px0, py0, px1, py1), out);
-            return;
+            return tile_done();
         }
         // Front to back (the bin's order reversed), until every pixel of the tile is covered:
         // the strokes behind would not show.
@@ -585,6 +595,7 @@ StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins
         }
         painter.finish();
         tile_fragments[tile] = painter.fragments;
+        tile_done();
     });
     for (uint64_t f : tile_fragments) out.fragments += f;
     return out;

@@ -41,8 +41,10 @@ struct StrokeLayer {
 // eye distances cross blend from one order to the other over render/order_blend_frames
 // (composite.cpp: TileLayer). Fills the AOVs of the nearest stroke more than half opaque when
 // the plan asks.
+// `progress`, when set, hears ("paint", done) at each whole percent of the tiles.
 StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& sprites, const TileBins& bins,
-                          const FramePlan& plan, const RenderSettings& settings, Frame& frame);
+                          const FramePlan& plan, const RenderSettings& settings, Frame& frame,
+                          const std::function<void(const char*, double)>* progress = nullptr);
 
 // Sky and ground seen from the camera (or the canvas colour), with slow noise, where the
 // strokes let it show.

@@ -2,6 +2,7 @@
 // alone (DESIGN.md: "the plan"), each decision with the reason --explain prints.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "pipeline/camera.h"
@@ -27,6 +28,9 @@ struct FrameSettings {
     bool trace = false;
     const FrameView* lod_view = nullptr;
     uint32_t noise_reseed = 0;
+    // Told when each stage starts (done 0) and how far the paint stage has come, for frames
+    // long enough to report on; called from worker threads (the callee serializes).
+    std::function<void(const char* stage, double done)> progress;
 };
 
 // What the camera track and the sun's keys give at the frame's time. The sun is the view's only

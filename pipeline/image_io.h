@@ -31,6 +31,10 @@ bool image_has_size(const std::filesystem::path& path, int width, int height);
 // 8-bit sRGB RGB bytes of the frame (what a PNG holds), for tests and contact sheets.
 std::vector<uint8_t> frame_srgb8(const Frame& frame);
 
+// The bytes a pixel's converted copy takes while `path` is written (8-bit PNG, 16-bit TIFF,
+// EXR in float and then half), for the memory a job is estimated to need.
+double output_bytes_per_pixel(const std::filesystem::path& path, bool aovs);
+
 // Error of a frame against a reference of the same size, over the 8-bit sRGB values a viewer
 // sees (as 0..1 floats), through OpenImageIO's ImageBufAlgo::compare.
 struct ImageError {

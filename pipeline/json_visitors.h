@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <iterator>
@@ -23,7 +24,9 @@ using json = nlohmann::json;
 using ordered_json = nlohmann::ordered_json;
 
 inline std::string describe(const json& v) {
-    std::string s = v.dump();
+    // Invalid UTF-8 cannot reach a value (files and --set are checked), but a message must
+    // never throw while it is being built.
+    std::string s = v.dump(-1, ' ', false, json::error_handler_t::replace);
     if (s.size() > 40) s = s.substr(0, 37) + "...";
     return s;
 }
@@ -575,6 +578,31 @@ inline std::string override_path_problem(const json& doc, const json::json_point
     return "";
 }
 
+// Whether `s` is well-formed UTF-8 (RFC 3629: no overlongs, surrogates or code points past
+// U+10FFFF), as every JSON text must be.
+inline bool valid_utf8(const std::string& s) {
+    const auto* p = reinterpret_cast<const unsigned char*>(s.data());
+    const size_t n = s.size();
+    for (size_t i = 0; i < n;) {
+        const unsigned char c = p[i];
+        size_t len = c < 0x80           ? 1
+                     : (c >> 5) == 0x6  ? 2
+                     : (c >> 4) == 0xe  ? 3
+                     : (c >> 3) == 0x1e ? 4
+                                        : 0;
+        if (len == 0 || i + len > n) return false;
+        uint32_t cp = len == 1 ? c : c & (0x7f >> len);
+        for (size_t k = 1; k < len; ++k) {
+            if ((p[i + k] & 0xc0) != 0x80) return false;
+            cp = (cp << 6) | (p[i + k] & 0x3f);
+        }
+        static constexpr uint32_t kLeast[] = {0, 0, 0x80, 0x800, 0x10000};
+        if (cp < kLeast[len] || cp > 0x10ffff || (cp >= 0xd800 && cp <= 0xdfff)) return false;
+        i += len;
+    }
+    return true;
+}
+
 // Applies "POINTER=VALUE" overrides (VALUE parsed as JSON, else taken as a string), recording
 // their pointers in `overridden` and their problems in `problems`.
 inline void apply_overrides(json& doc, const std::vector<std::string>& overrides,
@@ -585,6 +613,10 @@ inline void apply_overrides(json& doc, const std::vector<std::string>& overrides
         if (eq == std::string::npos || ptr.empty() || ptr[0] != '/') {
             problems.push_back(
                 {"--set " + o, "expected POINTER=VALUE, e.g. /trunk/taper/base=0.9"});
+            continue;
+        }
+        if (!valid_utf8(o)) {
+            problems.push_back({"--set", "not valid UTF-8 (a JSON text must be)"});
             continue;
         }
         std::string value = o.substr(eq + 1);

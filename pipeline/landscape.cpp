@@ -155,10 +155,37 @@ uint32_t terrain_material_at(const SceneDesc& s, const glm::dvec3& world) {
     return m;
 }
 
-BuiltLandscape build_landscape(const SceneDesc& s) {
-    BuiltLandscape out;
+namespace {
+
+// The particle files' strokes, in chunks small enough to spread over threads.
+void add_imported(const SceneDesc& s, BuiltLandscape& out) {
+    out.chunk_source.resize(out.chunks.size());
+    for (const ParticleFileDesc& p : s.particles) {
+        if (!p.particles) continue;
+        out.imported.push_back(p.particles);
+        const SurfaceParticles& all = p.particles->strokes;
+        for (size_t first = 0; first < all.size(); first += kImportedChunk) {
+            const size_t n = std::min(kImportedChunk, all.size() - first);
+            SurfaceParticles c;
+            c.reserve(n);
+            auto copy = [&](auto& to, const auto& from) {
+                to.assign(from.begin() + static_cast<std::ptrdiff_t>(first),
+                          from.begin() + static_cast<std::ptrdiff_t>(first + n));
+            };
+            copy(c.position, all.position), copy(c.normal_code, all.normal_code);
+            copy(c.random_code, all.random_code), copy(c.uv_code, all.uv_code);
+            copy(c.height_code, all.height_code), copy(c.material, all.material);
+            copy(c.label, all.label), copy(c.fade_code, all.fade_code);
+            out.chunks.push_back(std::move(c));
+            out.chunk_size.push_back(1.0f);
+            out.chunk_source.push_back({p.particles.get(), first, p.color_amount});
+        }
+    }
+}
+
+void build_surfaces(const SceneDesc& s, BuiltLandscape& out) {
     const float density = s.build.surface_density;
-    if (!s.terrain.present) return out;
+    if (!s.terrain.present) return;
     const TerrainDesc& t = s.terrain;
     out.has_terrain = true;
     GridSurface grid = generate_terrain(t.params, t.seed);
@@ -204,6 +231,14 @@ BuiltLandscape build_landscape(const SceneDesc& s) {
         out.chunk_size.push_back(size);
         emit_mesh_strokes(out.rocks.back(), rp, r.seed, kRockKey + i, out.chunks.back());
     }
+}
+
+}  // namespace
+
+BuiltLandscape build_landscape(const SceneDesc& s) {
+    BuiltLandscape out;
+    build_surfaces(s, out);
+    add_imported(s, out);
     return out;
 }
 

@@ -117,6 +117,10 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
                               t.ms(), std::to_string(sun_rays->caster_count()) + " casters"});
     }
 
+    auto stage = [&](const char* name) {
+        if (settings.progress) settings.progress(name, 0.0);
+    };
+    stage("sprites");
     PassTimer t;
     const FrameLod lod = level_of_detail(shot, settings.lod_view ? *settings.lod_view : view, rs);
     if (plan.lod) rep.passes.push_back(lod_report(lod, t.ms()));
@@ -155,9 +159,11 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
 
     // Strokes first, nearest first: the background and underpainting are then needed only
     // where the strokes leave some light through.
+    stage("paint");
     t = PassTimer();
     Frame frame = make_frame(cam, plan.aovs);
-    const StrokeLayer strokes = paint_strokes(shot, sprites, bins, plan, rs, frame);
+    const StrokeLayer strokes =
+        paint_strokes(shot, sprites, bins, plan, rs, frame, &settings.progress);
     rep.fragments = strokes.fragments;
     rep.passes.push_back({"paint", true,
                           "strokes front to back, tiles in parallel, each until it is covered",
@@ -169,6 +175,7 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
          shot.scene.background.canvas ? "canvas colour" : "sky and ground seen from the camera",
          t.ms(), ""});
     if (plan.underpaint) {
+        stage("underpaint");
         t = PassTimer();
         rep.underpaint_rays = paint_underpainting(shot, view, plan, rs, sun_rays, strokes, frame);
         rep.passes.push_back(
@@ -184,6 +191,14 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
             FrameReport::Trace{std::move(sprites.sprites), strokes.first, strokes.second,
                                strokes.first_weight, strokes.through});
     return frame;
+}
+
+uint64_t frame_buffer_bytes(int width, int height, bool aovs, float underpaint_scale,
+                            double output_bytes) {
+    const double px = static_cast<double>(width) * static_cast<double>(height);
+    const double per = (aovs ? 32.0 : 16.0) + 16.0 +
+                       20.0 * double(underpaint_scale) * double(underpaint_scale) + output_bytes;
+    return static_cast<uint64_t>(px * per);
 }
 
 Frame paint_still(const SceneDesc& scene, bool aovs, FrameReport* report) {

@@ -58,6 +58,14 @@ TimeSpan animation_span(const SceneDesc& scene);
 // for a still.
 FrameRange animation_frames(const SceneDesc& scene);
 
+// The bytes a frame's image buffers hold at once: the frame (RGBA in float, 16 a pixel, 32 with
+// AOVs), the strokes' colour and light left (16), the underpainting (20 at its scale, squared)
+// and the output's converted copy (`output_bytes`); what a command checks against
+// --limit memory_mb before any work. Sprites and the shot come on top, and grow with the scene,
+// not the image.
+uint64_t frame_buffer_bytes(int width, int height, bool aovs, float underpaint_scale,
+                            double output_bytes);
+
 Frame paint_frame(const Shot& shot, const FrameView& view, const FrameSettings& settings,
                   FrameReport* report = nullptr);
 

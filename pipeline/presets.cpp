@@ -5,9 +5,11 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 
 #include "pipeline/error.h"
 #include "pipeline/json_params.h"
+#include "pipeline/limits.h"
 
 namespace pleinair {
 
@@ -45,13 +47,27 @@ fs::path resolve_tree_preset(const std::string& s) {
     return resolve_preset("trees", s, "--preset");
 }
 
-std::string read_input_file(const fs::path& file) {
+std::string read_input_file(const fs::path& file, const char* limit) {
     std::ifstream in(file, std::ios::binary);
     if (!in || fs::is_directory(file))
         throw InputError(file.string(), "", "cannot read the file (missing or not a file)");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
+    const bool particles = limit && std::string_view(limit) == "particle_file_mb";
+    const uint64_t max_mb = particles ? limits().particle_file_mb : limits().input_mb;
+    // Read in blocks up to the limit, so a pipe or a growing file cannot exhaust memory either.
+    std::string text;
+    std::error_code ec;
+    if (const uintmax_t size = fs::file_size(file, ec); !ec && (size >> 20) < max_mb)
+        text.reserve(static_cast<size_t>(size));
+    char block[1 << 16];
+    while (in.read(block, sizeof block) || in.gcount() > 0) {
+        text.append(block, static_cast<size_t>(in.gcount()));
+        if (text.size() > (max_mb << 20))
+            throw InputError(file.string(), "",
+                             "larger than the limit of " + std::to_string(max_mb) + " MB for " +
+                                 (particles ? "a particle file" : "an input file") + "; " +
+                                 how_to_raise(particles ? "particle_file_mb" : "input_mb"));
+    }
+    return text;
 }
 
 TreeParams load_tree_preset(const fs::path& file, const std::vector<std::string>& overrides) {

@@ -27,8 +27,9 @@ std::vector<std::string> preset_names(const std::string& kind);
 std::filesystem::path resolve_preset(const std::string& kind, const std::string& name_or_file,
                                      const std::string& source, const std::string& pointer = "");
 
-// The whole file, or InputError naming it.
-std::string read_input_file(const std::filesystem::path& file);
+// The whole file, or InputError naming it; a file past the limit named ("input_mb" or
+// "particle_file_mb", pipeline/limits.h) is refused once that many bytes are read.
+std::string read_input_file(const std::filesystem::path& file, const char* limit = "input_mb");
 
 // Shipped tree presets, sorted by name. Throws InputError if one does not load.
 std::vector<PresetInfo> list_tree_presets();

@@ -6,7 +6,9 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 
+#include "generators/rng.h"
 #include "pipeline/json_visitors.h"
+#include "pipeline/limits.h"
 #include "pipeline/presets.h"
 #include "pipeline/shader_io.h"
 
@@ -100,6 +102,45 @@ void visit_rock(RockDesc& r, V& v) {
     v.integer("subdivision_levels", r.params.subdivision_levels, {0, 5},
               "Catmull-Clark levels of the rock mesh (6 x 4^levels faces).");
     v.text("material", r.material_name, "Material of its strokes.");
+}
+
+const std::pair<UpAxis, const char*> kUpAxes[] = {{UpAxis::kY, "y"}, {UpAxis::kZ, "z"}};
+
+template <class V>
+void visit_particle_file(ParticleFileDesc& p, V& v) {
+    v.require("file");
+    v.text("file", p.file,
+           "A PLY file of particles (ASCII or binary, float or double, as Blender, Houdini and "
+           "MeshLab write them), relative to the scene's folder. Only its vertices are read.");
+    v.require("material");
+    v.text("material", p.material_name,
+           "Material (/materials) whose stroke shader and palette paint them.");
+    v.choice("up", p.up, kUpAxes,
+             "The file's up axis: \"y\" (Houdini, MeshLab) or \"z\" (Blender's, turned so "
+             "its z is pleinair's y and its y points away from the camera's default view).");
+    v.vector("position", p.position, "world units", "Where the file's origin goes.");
+    v.number("scale", p.scale, {1e-6, 1e6}, "", "World units per file unit (positions, sizes).");
+    v.text("size", p.size,
+           "Vertex property holding each particle's size (Houdini's pscale). Empty: pscale or "
+           "radius when the file has one, else the material's sprite_size; \"none\": ignored.");
+    v.number("size_to_width", p.size_to_width, {1e-6, 1e6}, "",
+             "Stroke width per unit of size: 2 reads the size as a radius (pscale, MeshLab's "
+             "radius).");
+    v.text("label", p.label,
+           "Integer vertex property giving each particle its stable label, so its stroke keeps "
+           "its noise when the tool reorders points (Houdini's id). Empty: id when present, "
+           "else the vertex index; \"none\": the index.");
+    v.text("normal", p.normal,
+           "Three vertex properties, comma-separated, holding the normal (Houdini's N and "
+           "Blender's normals export as nx,ny,nz). Empty: nx,ny,nz when present, else each "
+           "particle faces the sun; \"none\": faces the sun.");
+    v.text("color", p.color,
+           "Three vertex properties holding the colour (Houdini's Cd). Integer types are sRGB "
+           "in their range, floats linear in 0..1. Empty: red,green,blue or r,g,b when "
+           "present; \"none\": the palette alone.");
+    v.real("color_amount", p.color_amount, {0, 1}, "",
+           "How much of a stroke's colour is the file's, painted at the lightness the shader "
+           "picks from the palette (so shadows stay painted, never black); 0: the palette's.");
 }
 
 template <class V>
@@ -491,6 +532,33 @@ void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
                   rock.material = material(rock.material_name, ptr + "/material");
                   s.rocks.push_back(rock);
               });
+
+    read_list(doc, "particles", "/particles", problems, plain,
+              [&](const json&, Reader& r, const std::string& ptr) {
+                  ParticleFileDesc p;
+                  visit_particle_file(p, r);
+                  if (!p.material_name.empty())
+                      p.material = material(p.material_name, ptr + "/material");
+                  s.particles.push_back(p);
+              });
+}
+
+// Each particle file read and turned into strokes now, so a broken file is refused with the
+// scene, before any work (the strokes are shared by every copy of the scene).
+void load_particle_files(const std::string& source, SceneDesc& s, std::vector<Problem>& problems) {
+    for (size_t i = 0; i < s.particles.size(); ++i) {
+        ParticleFileDesc& p = s.particles[i];
+        const std::string ptr = "/particles/" + std::to_string(i) + "/file";
+        fs::path file(p.file);
+        if (file.is_relative() && source.ends_with(".json"))
+            file = fs::path(source).parent_path() / file;
+        load_into(problems, source, ptr, [&] {
+            const std::string data = read_input_file(file, "particle_file_mb");
+            p.particles = std::make_shared<const ImportedParticles>(
+                import_particles(data, file.string(), p, hash_keys(0x706c79, i),
+                                 glm::vec3(s.sun_direction), kMaxWorldCoordinate));
+        });
+    }
 }
 
 // The camera's and the sun's tracks (`/camera/track`, `/sun/track`): lists of keys, each read
@@ -835,7 +903,8 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
     Reader reader(doc, problems, plain);
     reader.check_ranges();
     visit_scene(s, reader);
-    for (const char* key : {"families", "trees", "materials", "rocks", "groups"}) reader.claim(key);
+    for (const char* key : {"families", "trees", "materials", "rocks", "groups", "particles"})
+        reader.claim(key);
     reader.finish();
     parse_tracks(doc, s, problems, plain);
     // A circle the reader already refused (out of range) is not reported twice.
@@ -865,10 +934,24 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
     parse_trees(doc, s, problems, plain);
     parse_groups(doc, s, problems, plain);
     check_world_range(s, problems);
+    // The files last, and only for a scene otherwise sound: a broken scene is not kept waiting.
+    if (problems.empty()) load_particle_files(source, s, problems);
     mark_overrides(problems, overridden);
     if (!problems.empty()) throw InputError(source, problems);
 
     place_on_ground(s);
+    // Counted once the groups are scattered, before a tree is grown (each holds megabytes).
+    if (s.trees.size() > limits().trees) {
+        const bool placed = s.explicit_trees > limits().trees;
+        const std::string what =
+            s.explicit_trees == s.trees.size()
+                ? "the scene lists " + std::to_string(s.trees.size()) + " trees"
+                : "the scene places " + std::to_string(s.trees.size()) + " trees (" +
+                      std::to_string(s.explicit_trees) + " listed, the rest scattered)";
+        throw InputError(source, placed ? "/trees" : "/groups",
+                         what + ", over the limit of " + std::to_string(limits().trees) + "; " +
+                             how_to_raise("trees"));
+    }
     return s;
 }
 
@@ -916,6 +999,13 @@ std::string scene_reference() {
         visit_rock(r, d);
         visit_strokes(r.strokes, d);
     });
+    d.object("particles/N",
+             "A file of particles made by another tool, painted as strokes with a material "
+             "(they cast no shadows and never fade with distance)",
+             [&] {
+                 ParticleFileDesc p;
+                 visit_particle_file(p, d);
+             });
     d.object("groups/N", "One group of trees scattered over the terrain (Poisson disk)", [&] {
         TreeGroup g;
         visit_group(g, d);

@@ -14,6 +14,7 @@
 #include "generators/tree_params.h"
 #include "pipeline/camera.h"
 #include "pipeline/camera_track.h"
+#include "pipeline/particle_files.h"
 #include "pipeline/settings.h"
 #include "shading/color.h"
 #include "shading/stroke_shader.h"
@@ -139,6 +140,7 @@ struct SceneDesc {
     WaterDesc water;
     std::vector<RockDesc> rocks;
     std::vector<TreeGroup> groups;
+    std::vector<ParticleFileDesc> particles;  // files of particles from other tools
 
     // A camera or a sun track: frames differ with time.
     bool animated() const { return !camera_track.keys.empty() || !sun_track.empty(); }

@@ -30,6 +30,8 @@ struct SpriteInput {
     // distance fade. Null for leaves and bark.
     const SurfaceParticles* surface = nullptr;
     size_t index = 0;
+    const Color* own_color = nullptr;  // an imported particle's colour
+    float own_amount = 0;
     ParticleLod lod;  // what the level of detail does to it (IV.6, IV.7)
 };
 
@@ -132,6 +134,11 @@ void shade_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in,
         out.k.lightness = l;
         surface_frequencies(*m.surface, h, out.k.frequ_s, out.k.frequ_t);
         out.object_id = 0x10000u + S.material[in.index];
+        if (in.own_color) {
+            const float mid = std::max(luminance(palette_lookup(*m.palette, 0.5f)), 1e-3f);
+            out.k.own = *in.own_color / mid;
+            out.k.own_amount = in.own_amount;
+        }
     } else {
         out.object_id = in.tree_id + 1;
     }
@@ -164,8 +171,17 @@ SpriteInput sprite_input(const Shot& shot, size_t item, SpriteKind kind, size_t 
         const SurfaceParticles& S = shot.land->chunks[chunk];
         mat = shot.materials.surface(S.material[j]);
         const SpriteMaterial& m = shot.materials[mat];
-        const double w = m.shader->sprite_size * shot.land->chunk_size[chunk] *
-                         inside_size(S.height(j), m.surface->inside_growth);
+        double w = m.shader->sprite_size * shot.land->chunk_size[chunk] *
+                   inside_size(S.height(j), m.surface->inside_growth);
+        // A particle file's own sizes and colours, where it has them.
+        const BuiltLandscape::ChunkSource from = chunk < shot.land->chunk_source.size()
+                                                     ? shot.land->chunk_source[chunk]
+                                                     : BuiltLandscape::ChunkSource{};
+        if (from.file) {
+            if (!from.file->width.empty()) w = from.file->width[from.first + j];
+            if (!from.file->color.empty() && from.color_amount > 0)
+                in.own_color = &from.file->color[from.first + j], in.own_amount = from.color_amount;
+        }
         in.normal = lighting_normal(o.normal, S.random_normal(j), m.surface->random_normal_weight);
         in.tangent = glm::vec3(0, 1, 0);
         in.width = w;

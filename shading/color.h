@@ -109,6 +109,16 @@ inline Color limit_saturation(Color c, float max_saturation) {
     return Color(hi) - (Color(hi) - c) * k;
 }
 
+// Linear luminance (Rec. 709 weights).
+inline float luminance(Color c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+// A colour scaled by k, then down again if a channel passes 1, so its hue never shifts.
+inline Color scale_keeping_hue(Color c, float k) {
+    c = c * k;
+    const float hi = std::max(c.x, std::max(c.y, c.z));
+    return hi > 1.0f ? c / hi : c;
+}
+
 inline Color clamp_value(Color c, float lo, float hi) {
     float v = std::max(c.x, std::max(c.y, c.z));
     if (!(v > 0.0f)) return Color(lo);  // black has no hue: it becomes the darkest grey allowed

@@ -187,6 +187,12 @@ struct StrokeConstants {
     float max_saturation = 1;
     float value_lo = 0, value_hi = 1;  // linear
     bool atmosphere = false;
+    // A particle's own colour (imported particles), linear, over the luminance of the palette's
+    // middle colour: painted times the palette colour's luminance, it is the file's colour at
+    // mid lightness, darker in shade (never black) and lighter in the light. own_amount 0 keeps
+    // the palette's.
+    Color own{0.0f};
+    float own_amount = 0;
 };
 
 // The per-sprite part of the shader. `shadow` is 1 when lit (the still renderer has no shadow
@@ -257,8 +263,10 @@ inline float stroke_noise(const StrokeConstants& k, float s, float t, int octave
     return stroke_noise(noise_of(k), s, t, octaves);
 }
 
-// Tint, then atmospheric perspective: what happens to a palette colour after the lookup.
+// The particle's own colour, tint, then atmospheric perspective: what happens to a palette
+// colour after the lookup.
 inline Color finish_color(const StrokeConstants& k, Color c) {
+    if (k.own_amount > 0.0f) c = mix(c, scale_keeping_hue(k.own, luminance(c)), k.own_amount);
     c = c * k.tint_keep + k.tint;
     if (k.atmosphere) {
         c = c * k.hue_keep + k.hue;

@@ -278,6 +278,8 @@ int run_animate(const AnimateCommand& cmd) {
         if (std::string why = make_camera(scene.camera_params, scene.camera); !why.empty())
             throw InputError(file.string(), "/camera", why);
     }
+    // One frame painted while the one before is written.
+    check_job_memory(scene, cmd.aovs, pattern.path(1), 2, file.string());
     const fs::path dir = fs::path(pattern.path(0)).parent_path();
     if (!dir.empty()) fs::create_directories(dir);
     if (cmd.resume) clear_partials(dir.empty() ? fs::path(".") : dir);

@@ -14,6 +14,7 @@
 #include "pipeline/family.h"
 #include "pipeline/image_io.h"
 #include "pipeline/json_params.h"
+#include "pipeline/limits.h"
 #include "pipeline/presets.h"
 #include "pipeline/scene.h"
 #include "pipeline/shader_io.h"
@@ -156,6 +157,11 @@ int paint_sheet(const FamilyCommand& cmd, const TreeParams& params, const std::s
 }  // namespace
 
 int run_family(const FamilyCommand& cmd) {
+    // Every member is held in memory until written (about a megabyte for an oak).
+    if (static_cast<uint64_t>(cmd.count) > limits().members)
+        throw InputError("--count", "",
+                         std::to_string(cmd.count) + " members, over the limit of " +
+                             std::to_string(limits().members) + "; " + how_to_raise("members"));
     std::string name;
     TreeParams params = load(cmd.preset, cmd.set, name);
     if (is_other_image_path(cmd.out))

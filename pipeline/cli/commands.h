@@ -37,6 +37,7 @@ struct RenderCommand {
     std::string scene;             // name in presets/scenes or a JSON file
     std::string out;               // image path: .png, .tif, .exr
     bool explain = false;          // print the frame's plan, pass times and counts
+    bool progress = false;         // report each stage and the paint's percent on stderr
     bool aovs = false;             // EXR depth, object id, alpha and lightness channels
     std::vector<std::string> set;  // "POINTER=VALUE" overrides of the scene
     std::optional<double> time;    // seconds into an animated scene
@@ -86,5 +87,9 @@ struct SceneDesc;
 std::vector<int> frames_to_paint(const SceneDesc& scene, const std::string& text);
 // InputError naming the first frame whose camera degenerates.
 void check_views(const SceneDesc& scene, const std::vector<int>& frames, const std::string& file);
+// InputError when `frames_at_once` frames of the scene's camera, written to `out`, are
+// estimated to need more than --limit memory_mb; the line gives the estimate and its parts.
+void check_job_memory(const SceneDesc& scene, bool aovs, const std::string& out, int frames_at_once,
+                      const std::string& file);
 
 }  // namespace pleinair

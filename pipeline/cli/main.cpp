@@ -15,6 +15,7 @@
 #include "generators/tree.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/error.h"
+#include "pipeline/limits.h"
 #include "pipeline/partial_files.h"
 #include "pipeline/scene.h"
 
@@ -104,7 +105,8 @@ Command add_family(CLI::App& app) {
     CLI::App* f = app.add_subcommand(
         "family", "Grow N members of a family, seeds derived from one base seed");
     f->add_option("--preset", c->preset, "Preset name or JSON file")->required();
-    f->add_option("--count", c->count, "Number of members")->check(CLI::Range(1, 100000));
+    f->add_option("--count", c->count, "Number of members (at most --limit members)")
+        ->check(CLI::Range(1, 100000000));
     f->add_option("--seed", c->seed, "Base seed")->check(whole_number(UINT64_MAX));
     f->add_option("-o,--out", c->out,
                   "Output directory (one folder per member), or an image path (.png, .tif, .exr) "
@@ -131,6 +133,9 @@ Command add_render(CLI::App& app) {
     r->add_flag("--explain", c->explain,
                 "Print the frame's plan: passes run or skipped and why, times, counts");
     r->add_flag("--aovs", c->aovs, "Add depth, object id, alpha, lightness channels (EXR)");
+    r->add_flag("--progress", c->progress,
+                "Report each stage and the paint's progress on stderr (always past 16 "
+                "megapixels)");
     r->add_option("--set", c->set, "Override a scene key: POINTER=VALUE, e.g. /camera/fov=30");
     auto time = std::make_shared<double>(0);
     auto frame = std::make_shared<int>(0);
@@ -223,6 +228,14 @@ int main(int argc, char** argv) {
     int threads = 0;
     app.add_option("--threads", threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 1024));
+    std::vector<std::string> limit_settings;
+    app.add_option("--limit", limit_settings,
+                   "Raise (or lower) a limit checked before work starts: NAME=N, repeatable. "
+                   "Limits and their defaults:\n" +
+                       describe_limits())
+        ->each([](const std::string& v) {
+            if (std::string why = set_limit(v); !why.empty()) throw CLI::ValidationError(why);
+        });
     const Command commands[] = {add_tree(app),    add_family(app), add_render(app),
                                 add_animate(app), add_bench(app),  add_presets(app)};
     try {

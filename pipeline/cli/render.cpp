@@ -1,11 +1,14 @@
 // The render command: scene file in, painted image out, with the shot's and the frame's plan
 // on request.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <mutex>
 
 #include "pipeline/cli/commands.h"
 #include "pipeline/error.h"
 #include "pipeline/image_io.h"
+#include "pipeline/limits.h"
 #include "pipeline/paint.h"
 #include "pipeline/presets.h"
 
@@ -77,6 +80,27 @@ void print_explain(const Shot& shot, const FrameReport& report, const std::strin
     for (const auto& p : report.passes) print_pass(p);
 }
 
+void check_job_memory(const SceneDesc& scene, bool aovs, const std::string& out, int frames_at_once,
+                      const std::string& file) {
+    const Camera& cam = scene.camera;
+    const double output = output_bytes_per_pixel(out, aovs);
+    const uint64_t bytes =
+        frame_buffer_bytes(cam.width, cam.height, aovs, scene.render.underpaint_scale, output) *
+        static_cast<uint64_t>(frames_at_once);
+    const uint64_t mb = (bytes + (1u << 20) - 1) >> 20;
+    if (mb <= limits().memory_mb) return;
+    char line[256];
+    std::snprintf(
+        line, sizeof line,
+        "a %dx%d frame%s needs about %llu MB for its image buffers (%.0f bytes a pixel%s), "
+        "over the limit of %llu MB; ",
+        cam.width, cam.height, aovs ? " with AOVs" : "", static_cast<unsigned long long>(mb),
+        static_cast<double>(bytes) / frames_at_once / cam.width / cam.height,
+        frames_at_once > 1 ? ", two frames at once" : "",
+        static_cast<unsigned long long>(limits().memory_mb));
+    throw InputError(file, "/camera/width", line + how_to_raise("memory_mb"));
+}
+
 int run_render(const RenderCommand& cmd) {
     if (!is_image_path(cmd.out))
         throw InputError(
@@ -87,6 +111,7 @@ int run_render(const RenderCommand& cmd) {
     PassTimer total;
     fs::path file = resolve_preset("scenes", cmd.scene, "SCENE");
     SceneDesc scene = load_scene(file, cmd.set);
+    check_job_memory(scene, cmd.aovs, cmd.out, 1, file.string());
     const double t = frame_time_of(cmd, scene, file.string());
     FrameView view;
     try {
@@ -100,8 +125,27 @@ int run_render(const RenderCommand& cmd) {
 
     FrameReport report;
     PassTimer frame_timer;
-    const Frame frame =
-        paint_frame(shot, view, scene_frame_settings(shot.scene, cmd.aovs), &report);
+    FrameSettings settings = scene_frame_settings(shot.scene, cmd.aovs);
+    // Large frames (past 16 megapixels) say how far they have come, unasked.
+    const bool report_progress =
+        cmd.progress || static_cast<double>(view.camera.width) * view.camera.height > (1 << 24);
+    std::mutex progress_mutex;
+    if (report_progress) {
+        std::fprintf(stderr, "pleinair: %s, %dx%d: shot built in %.1f s\n", file.string().c_str(),
+                     view.camera.width, view.camera.height, shot_ms / 1000);
+        settings.progress = [&](const char* stage, double done) {
+            const std::lock_guard<std::mutex> lock(progress_mutex);
+            // Stage starts, and the paint at every tenth.
+            const int pct = static_cast<int>(std::floor(done * 100 + 1e-9));
+            if (done == 0)
+                std::fprintf(stderr, "pleinair: %s (%.1f s)\n", stage, frame_timer.ms() / 1000);
+            else if (pct % 10 == 0)
+                std::fprintf(stderr, "pleinair: %s %d%% (%.1f s)\n", stage, pct,
+                             frame_timer.ms() / 1000);
+        };
+    }
+    const Frame frame = paint_frame(shot, view, settings, &report);
+    if (report_progress) std::fprintf(stderr, "pleinair: writing %s\n", cmd.out.c_str());
     const double frame_ms = frame_timer.ms();
 
     PassTimer out_timer;

@@ -1,0 +1,149 @@
+// The fuzz targets' bodies (targets.h).
+#include "targets.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "pipeline/error.h"
+#include "pipeline/json_params.h"
+#include "pipeline/particle_files.h"
+#include "pipeline/scene.h"
+#include "pipeline/shader_io.h"
+
+namespace pleinair::fuzz {
+
+namespace {
+
+[[noreturn]] void finding(const char* what, const std::string& detail) {
+    std::fprintf(stderr, "fuzz finding: %s: %s\n", what, detail.c_str());
+    std::abort();
+}
+
+// Runs `fn`; a refusal must be an InputError of one line per problem, naming its source.
+template <class Fn>
+void refused_cleanly(const char* target, Fn&& fn) {
+    try {
+        fn();
+    } catch (const InputError& e) {
+        const std::string msg = e.what();
+        if (e.problems().empty() || msg.empty()) finding(target, "an empty InputError");
+        size_t lines = 1;
+        for (char c : msg) lines += c == '\n';
+        if (lines != e.problems().size()) finding(target, "a problem over several lines: " + msg);
+    } catch (const std::exception& e) {
+        finding(target, std::string("not an InputError: ") + e.what());
+    }
+}
+
+std::string text(const uint8_t* data, size_t size) {
+    return std::string(reinterpret_cast<const char*>(data), size);
+}
+
+bool finite(const glm::dvec3& v) { return std::isfinite(v.x + v.y + v.z); }
+
+}  // namespace
+
+int tree_preset(const uint8_t* data, size_t size) {
+    refused_cleanly("tree_preset", [&] {
+        const TreeParams p = parse_tree_params(text(data, size), "fuzz.json");
+        // Accepted: it saves and reads back to the same values.
+        const std::string saved = save_tree_params(p);
+        if (save_tree_params(parse_tree_params(saved, "saved.json")) != saved)
+            finding("tree_preset", "a preset that does not read back as saved");
+    });
+    return 0;
+}
+
+int shader_preset(const uint8_t* data, size_t size) {
+    refused_cleanly("shader_preset", [&] {
+        const ShaderPreset s = parse_shader_preset(text(data, size), "fuzz.json");
+        if (!std::isfinite(s.params.sprite_size) || !std::isfinite(s.params.stroke_fullness))
+            finding("shader_preset", "a non-finite parameter accepted");
+    });
+    return 0;
+}
+
+int palette(const uint8_t* data, size_t size) {
+    refused_cleanly("palette", [&] {
+        const PaletteFile f = parse_palette(text(data, size), "fuzz.json");
+        // Accepted: every lookup, at any lightness, is a finite colour.
+        for (float l = -0.5f; l <= 1.5f; l += 0.125f) {
+            const Color c = palette_lookup(f.palette, l);
+            if (!std::isfinite(c.x + c.y + c.z)) finding("palette", "a non-finite colour");
+        }
+    });
+    return 0;
+}
+
+int scene(const uint8_t* data, size_t size) {
+    refused_cleanly("scene", [&] {
+        const SceneDesc s = parse_scene(text(data, size), "fuzz/scene.json");
+        // Accepted: everything it places is finite and within the world.
+        auto check = [](const glm::dvec3& v) {
+            if (!finite(v) || std::abs(v.x) > 2 * kMaxWorldCoordinate ||
+                std::abs(v.z) > 2 * kMaxWorldCoordinate)
+                finding("scene", "a position outside the world accepted");
+        };
+        check(s.camera_params.position);
+        for (const auto& k : s.camera_track.keys) check(k.position);
+        for (const auto& t : s.trees) check(t.position);
+    });
+    return 0;
+}
+
+int set_value(const uint8_t* data, size_t size) {
+    // Each line is one --set POINTER=VALUE over a small scene that uses every section.
+    static const std::string base = R"({
+      "camera": {"position": [0, 2, 20], "look_at": [0, 2, 0], "width": 64, "height": 48,
+                 "track": [{"time": 0, "position": [0, 2, 20], "look_at": [0, 2, 0]},
+                           {"time": 1, "position": [2, 2, 18], "look_at": [0, 2, 0]}]},
+      "sun": {"direction": [0, 1, 0.3]},
+      "materials": {"grass": {"shader": "grass"}},
+      "terrain": {"min": [-10, -10], "max": [10, 10], "resolution": 9, "material": "grass",
+                  "hills": [{"center": [0, 0], "radius": 4, "height": 1}]},
+      "families": {"oak": {"preset": "oak"}},
+      "trees": [{"family": "oak", "seed": 1, "position": [0, 0, 0]}]})";
+    std::vector<std::string> overrides;
+    std::string line;
+    for (size_t i = 0; i <= size; ++i) {
+        if (i == size || data[i] == '\n') {
+            if (!line.empty()) overrides.push_back(line);
+            line.clear();
+        } else {
+            line += static_cast<char>(data[i]);
+        }
+    }
+    refused_cleanly("set_value", [&] { parse_scene(base, "fuzz/set.json", overrides); });
+    return 0;
+}
+
+int particle_file(const uint8_t* data, size_t size) {
+    // The first byte picks the axes and which attributes are named, the rest is the file.
+    if (size < 1) return 0;
+    ParticleFileDesc d;
+    d.up = data[0] & 1 ? UpAxis::kZ : UpAxis::kY;
+    if (data[0] & 2) d.size = "none";
+    if (data[0] & 4) d.color = "r,g,b";
+    if (data[0] & 8) d.normal = "none";
+    refused_cleanly("particle_file", [&] {
+        const ImportedParticles p = import_particles(text(data + 1, size - 1), "fuzz.ply", d, 1,
+                                                     glm::vec3(0, 1, 0), kMaxWorldCoordinate);
+        const SurfaceParticles& s = p.strokes;
+        for (size_t i = 0; i < s.size(); ++i) {
+            const glm::vec3 q = s.position[i];
+            if (!std::isfinite(q.x + q.y + q.z) || !(s.label[i] > 0 && s.label[i] < 1))
+                finding("particle_file", "a non-finite position or a label outside (0, 1)");
+            if (!p.width.empty() && !(p.width[i] > 0 && std::isfinite(p.width[i])))
+                finding("particle_file", "a width not > 0");
+            if (!p.color.empty() && !std::isfinite(p.color[i].x + p.color[i].y + p.color[i].z))
+                finding("particle_file", "a non-finite colour");
+        }
+    });
+    return 0;
+}
+
+}  // namespace pleinair::fuzz
