@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -144,6 +145,20 @@ class MemoryFile {
 
 }  // namespace
 
+size_t non_finite_values(const Frame& f) {
+    auto count = [](const std::vector<float>& v) {
+        return tbb::parallel_reduce(
+            tbb::blocked_range<size_t>(0, v.size(), 1 << 16), size_t{0},
+            [&](const auto& r, size_t n) {
+                for (size_t i = r.begin(); i < r.end(); ++i) n += !std::isfinite(v[i]);
+                return n;
+            },
+            std::plus<>());
+    };
+    return count(f.rgba) + count(f.depth) + count(f.object_id) + count(f.alpha) +
+           count(f.lightness);
+}
+
 double output_bytes_per_pixel(const fs::path& path, bool aovs) {
     const std::string ext = lower_ext(path);
     if (ext == ".exr") return (aovs ? 8 : 4) * 6.0;  // float, then OpenImageIO's half copy
@@ -167,6 +182,12 @@ void write_frame(const fs::path& path, const Frame& f) {
                          "cannot write \"" + path.string() +
                              "\": the extension must be .png, .tif, .tiff or .exr");
     const size_t n = static_cast<size_t>(f.width) * f.height;
+    // No NaN or Inf reaches an output: the 8-bit and 16-bit conversions would quietly turn one
+    // into a colour, so a frame holding one is a bug reported, not an image written.
+    const size_t bad = non_finite_values(f);
+    if (bad > 0)
+        throw std::runtime_error("the frame for " + path.string() + " holds " +
+                                 std::to_string(bad) + " values that are not finite; not written");
     OIIO::ImageSpec spec;
     std::vector<float> linear;
     std::vector<uint16_t> u16;

@@ -31,6 +31,10 @@ bool image_has_size(const std::filesystem::path& path, int width, int height);
 // 8-bit sRGB RGB bytes of the frame (what a PNG holds), for tests and contact sheets.
 std::vector<uint8_t> frame_srgb8(const Frame& frame);
 
+// How many values of the frame's buffers are NaN or infinite: write_frame refuses a frame
+// with any (std::runtime_error, exit 1) rather than let a conversion turn one into a colour.
+size_t non_finite_values(const Frame& frame);
+
 // The bytes a pixel's converted copy takes while `path` is written (8-bit PNG, 16-bit TIFF,
 // EXR in float and then half), for the memory a job is estimated to need.
 double output_bytes_per_pixel(const std::filesystem::path& path, bool aovs);

@@ -484,8 +484,12 @@ void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
         TerrainDesc& t = s.terrain;
         for (int k = 0; k < 2; ++k)
             if (!(t.params.max[k] > t.params.min[k]))
-                problems.push_back(
-                    {"/terrain/max", "must be greater than /terrain/min in x and z"});
+                problems.push_back({"/terrain/max", std::string("must be greater than "
+                                                                "/terrain/min in x and z; in ") +
+                                                        (k == 0 ? "x" : "z") + " " +
+                                                        format_number(t.params.max[k]) +
+                                                        " is not > " +
+                                                        format_number(t.params.min[k])});
         const json& tj = doc["terrain"];
         read_list(tj, "hills", "/terrain/hills", problems, plain,
                   [&](const json&, Reader& r, const std::string&) {

@@ -247,8 +247,12 @@ TEST(Tree, ExtremeUnitsScaleTheSameTree) {
     }
 }
 
-// Far from the origin the tree is the same tree: it is grown in its own frame and only placed.
-TEST(Tree, FarFromTheOriginIsTheSameTree) {
+// Growth never reads the origin: a tree is grown in its own frame and only placed, so one
+// grown 141 km out is the same tree bit for bit (this fails if any draw, noise or threshold
+// took the world position). Where it lands is tested on the files written
+// (TreeIo.FarFromOriginWritesFiniteWorldPositions) and on the painted landscape
+// (Landscape.FarFromTheOriginPaintsTheSamePicture).
+TEST(Tree, GrowthNeverReadsTheOrigin) {
     TreeParams p = test::preset("pine");
     Tree ref = generate_tree(p, 4);
     TreeOptions o;

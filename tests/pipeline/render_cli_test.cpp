@@ -2,8 +2,13 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <sstream>
+#include <thread>
+#include <vector>
 
 #include "test_util.h"
 
@@ -73,6 +78,86 @@ TEST(RenderCli, WritesPngTiffAndExrWithAovs) {
     fs::remove_all(dir);
 }
 
+TEST(RenderCli, TheTiffIs16BitAndMatchesThePng) {
+    auto dir = test::temp_dir("render-tiff");
+    ASSERT_EQ(run_pleinair(render_small("-o " + (dir / "a.png").string())).exit_code, 0);
+    ASSERT_EQ(run_pleinair(render_small("-o " + (dir / "a.tif").string())).exit_code, 0);
+    auto tif = OIIO::ImageInput::open((dir / "a.tif").string());
+    auto png = OIIO::ImageInput::open((dir / "a.png").string());
+    ASSERT_TRUE(tif && png);
+    EXPECT_EQ(tif->spec().format, OIIO::TypeDesc::UINT16);
+    EXPECT_EQ(tif->spec().nchannels, 3);
+    const size_t n = size_t(tif->spec().width) * tif->spec().height * 3;
+    ASSERT_EQ(n, size_t(png->spec().width) * png->spec().height * 3);
+    std::vector<uint16_t> t(n);
+    std::vector<uint8_t> p(n);
+    ASSERT_TRUE(tif->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT16, t.data()));
+    ASSERT_TRUE(png->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, p.data()));
+    // The same sRGB values, rounded to 16 bits and to 8: within half an 8-bit level, and the
+    // 16-bit file holds levels the 8-bit one cannot (it is not the PNG widened).
+    size_t finer = 0;
+    for (size_t i = 0; i < n; ++i) {
+        ASSERT_LE(std::abs(t[i] / 257.0 - p[i]), 0.5 + 1e-9) << i;
+        finer += t[i] % 257 != 0;
+    }
+    EXPECT_GT(finer, n / 2);
+}
+
+// `bench accuracy` on a small frame: every row measured, the rows equal to the reference
+// identical to it, and the error falling as each accuracy setting rises.
+TEST(RenderCli, BenchAccuracyMeasuresEveryRowHonestly) {
+    const auto r = run_pleinair(
+        "bench accuracy tests/golden/oak-study/scene.json --repeat 1 --set /camera/width=48 "
+        "--set /camera/height=48");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::map<std::string, double> rmse;
+    std::istringstream lines(r.out);
+    std::string line;
+    while (std::getline(lines, line)) {
+        if (line.rfind("| ", 0) != 0 || line.find("---") != std::string::npos ||
+            line.find("| setting") == 0)
+            continue;
+        std::vector<std::string> cells;
+        std::istringstream row(line.substr(2));
+        for (std::string c; std::getline(row, c, '|');) {
+            while (!c.empty() && c.front() == ' ') c.erase(c.begin());
+            while (!c.empty() && c.back() == ' ') c.pop_back();
+            cells.push_back(c);
+        }
+        ASSERT_GE(cells.size(), 5u) << line;
+        const double ms = std::stod(cells[2]), err = std::stod(cells[3]);
+        EXPECT_TRUE(std::isfinite(ms) && ms >= 0 && std::isfinite(err) && err >= 0) << line;
+        rmse[cells[1]] = err;
+    }
+    ASSERT_GE(rmse.size(), 14u) << r.out;
+    for (const char* same :
+         {"16 samples per pixel", "exact per fragment", "exact (sin, pow)", "0 (every stroke)"})
+        EXPECT_EQ(rmse.at(same), 0.0) << same;
+    EXPECT_GT(rmse.at("1 sample per pixel"), rmse.at("4 samples per pixel"));
+    EXPECT_GT(rmse.at("4 samples per pixel"), 0.0);
+    EXPECT_GT(rmse.at("1 octave"), rmse.at("2 octaves"));
+    EXPECT_GT(rmse.at("2 octaves"), rmse.at("4 octaves"));
+    EXPECT_GT(rmse.at("1/256"), 0.0);
+}
+
+// Same bytes through the command line on a frame of many tiles (192 of 64 px), on one thread
+// and on four times more threads than this machine has cores.
+TEST(RenderCli, ManyTilesSameBytesOnOneThreadAndOnMoreThreadsThanCores) {
+    const auto dir = test::temp_dir("render-threads");
+    const std::string size = " --set /camera/width=1024 --set /camera/height=768";
+    const unsigned many = 4 * std::max(1u, std::thread::hardware_concurrency());
+    ASSERT_EQ(run_pleinair(render_small("-o " + (dir / "one.png").string() + size + " --threads 1"))
+                  .exit_code,
+              0);
+    ASSERT_EQ(run_pleinair(render_small("-o " + (dir / "many.png").string() + size + " --threads " +
+                                        std::to_string(many)))
+                  .exit_code,
+              0);
+    const std::string one = test::read_file(dir / "one.png");
+    EXPECT_GT(one.size(), 10000u);
+    EXPECT_EQ(one, test::read_file(dir / "many.png"));
+}
+
 TEST(RenderCli, ExplainPrintsThePlanWithSkippedPasses) {
     auto dir = test::temp_dir("render-explain");
     auto r = run_pleinair(render_small("--explain -o " + (dir / "a.png").string()));
@@ -91,7 +176,7 @@ TEST(RenderCli, BadScenesAreOneLineExitTwoAndNoImage) {
     } cases[] = {
         {R"({"camera": {"fov": 0}})", ": /camera/fov: must be in [0.001, 179], got 0\n"},
         {R"({"materials": {"grass": {"shader": "grass"}}, "terrain": {"max": [-200, 5]}})",
-         ": /terrain/max: must be greater than /terrain/min in x and z\n"},
+         ": /terrain/max: must be greater than /terrain/min in x and z; in x -200 is not > -100\n"},
         {R"({"terrain": {"material": "grss"}})",
          ": /terrain/material: no material \"grss\" in /materials (have: none)\n"},
         {R"({"materials": {"g": {"shader": "corot-leaves"}}})",

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +19,7 @@
 #include <thread>
 
 #include "pipeline/error.h"
+#include "pipeline/image_io.h"
 #include "pipeline/partial_files.h"
 #include "pipeline/tree_io.h"
 #include "pipeline/write_file.h"
@@ -148,6 +150,39 @@ TEST(PartialFiles, TreeFolderReplacesAnEarlierOneWhole) {
 }
 
 // Same inputs, same bytes: no header carries the time the file was written.
+TEST(Writes, AFrameHoldingANaNOrAnInfIsNeverWritten) {
+    // The 8-bit path maps NaN to 0 and the 16-bit one to some level: neither may see one.
+    const auto dir = test::temp_dir("writes-nan");
+    Frame f;
+    f.width = 4, f.height = 3;
+    f.rgba.assign(4 * 12, 0.5f);
+    for (float bad : {NAN, INFINITY, -INFINITY}) {
+        for (const char* name : {"a.png", "a.tif", "a.exr"}) {
+            Frame g = f;
+            g.rgba[4 * 7 + 1] = bad;
+            EXPECT_EQ(non_finite_values(g), 1u);
+            try {
+                write_frame(dir / name, g);
+                ADD_FAILURE() << name << " written with " << bad;
+            } catch (const std::runtime_error& e) {
+                EXPECT_NE(std::string(e.what()).find("holds 1 values that are not finite"),
+                          std::string::npos)
+                    << e.what();
+            }
+            EXPECT_TRUE(fs::is_empty(dir)) << name;
+        }
+    }
+    // In an AOV too.
+    Frame h = f;
+    h.has_aovs = true;
+    h.depth.assign(12, 1.0f), h.object_id.assign(12, 0.0f), h.alpha.assign(12, 1.0f);
+    h.lightness.assign(12, 0.5f);
+    h.depth[5] = NAN;
+    EXPECT_EQ(non_finite_values(h), 1u);
+    EXPECT_THROW(write_frame(dir / "b.exr", h), std::runtime_error);
+    EXPECT_EQ(non_finite_values(f), 0u);
+}
+
 TEST(Writes, SameFrameTwiceGivesIdenticalBytesInEveryFormat) {
     auto dir = test::temp_dir("same-bytes");
     for (const char* name : {"a.png", "a.tif", "a.exr"}) {
@@ -254,9 +289,8 @@ TEST(Signals, SigtermAndSigintRemoveTheTemporaries) {
             {"family", "--preset", "shrub", "--count", "400", "-o", (dir / "fam").string()});
         ASSERT_GT(pid, 0);
         // Members are written into the temporary folder for seconds; signal once it holds a few.
-        const fs::path tmp =
-            dir / (".fam.partial-" + std::to_string(pid) + "@" +
-                   partial_host(partial_path("x").filename().string()));
+        const fs::path tmp = dir / (".fam.partial-" + std::to_string(pid) + "@" +
+                                    partial_host(partial_path("x").filename().string()));
         bool writing = false;
         for (int i = 0; i < 600 && !writing; ++i) {
             std::error_code ec;
