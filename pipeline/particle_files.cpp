@@ -151,6 +151,11 @@ ImportedParticles import_particles(const std::string& bytes, const std::string& 
             if (!(width <= max_coordinate))
                 bad(source, i, *size[0],
                     "a stroke " + number(width) + " wide, larger than the world");
+            // Fuzzing found a size of 1e-45: > 0 in double, a stroke of width 0 in float.
+            if (!(static_cast<float>(width) >= 1e-30f))
+                bad(source, i, *size[0],
+                    "a stroke " + number(width) +
+                        " wide, too narrow to paint (the least is 1e-30)");
             out.width.push_back(static_cast<float>(width));
         }
         if (!color.empty()) {

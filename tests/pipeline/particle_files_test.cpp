@@ -159,6 +159,9 @@ TEST(ParticleFiles, HostileFilesNameTheVertexAndProperty) {
     for (int k = 5; k < 8; ++k) zero_n[static_cast<size_t>(k)].values[1] = 0;
     std::vector<PlyColumn> neg_size = three_points(), int_color = three_points();
     neg_size[3].values[0] = -0.1;
+    std::vector<PlyColumn> tiny_size = three_points();  // found by fuzzing: 0 once in float
+    tiny_size[3].type = "double";
+    tiny_size[3].values[2] = 1e-45;
     int_color[8].type = "int";
     std::vector<PlyColumn> no_z = three_points();
     no_z.erase(no_z.begin() + 2);
@@ -175,6 +178,8 @@ TEST(ParticleFiles, HostileFilesNameTheVertexAndProperty) {
         {write_ply(far, "ascii"), "vertex 1 property z: placed at 200000, beyond the world"},
         {write_ply(zero_n, "ascii"), "vertex 1 property nx: a normal of zero length"},
         {write_ply(neg_size, "ascii"), "vertex 0 property pscale: a size must be > 0"},
+        {write_ply(tiny_size, "binary_little_endian"),
+         "vertex 2 property pscale: a stroke 2e-45 wide, too narrow to paint"},
         {write_ply(int_color, "ascii"), "property red: a colour is uchar, ushort, float"},
         {write_ply(no_z, "ascii"), "no vertex property \"z\""},
         {"ply\nformat ascii 1.0\nelement vertex 1\nproperty uchar x\nproperty float y\n"
@@ -199,6 +204,11 @@ TEST(ParticleFiles, HostileFilesNameTheVertexAndProperty) {
         {"ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n",
          "unknown property type \"quad\""},
         {"solid cube\n", "not a PLY file"},
+        // Found by fuzzing: no newline after end_header put the data one byte past the end.
+        {"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nend_header",
+         "but only 0 bytes follow"},
+        {"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header",
+         "only 0 bytes follow: vertex 0 is the first missing"},
         {"", "not a PLY file"},
     };
     for (const Case& c : cases) {
@@ -227,6 +237,14 @@ TEST(ParticleFiles, ElementsBeforeTheVerticesAndListsOnThemAreSkipped) {
     EXPECT_EQ(v.find("y")->values, (std::vector<double>{2, 5}));
     EXPECT_EQ(v.find("z")->values, (std::vector<double>{3, 6}));
     EXPECT_EQ(v.find("extra"), nullptr);
+    // An element of no properties takes no bytes, whatever its count: skipped at once
+    // (fuzzing found one of 2.7e16 walked one by one; tests/fuzz/regressions/particle_file).
+    const PlyVertices w = read_ply_vertices(
+        "ply\nformat ascii 1.0\nelement nothing 26666666646666663\nelement vertex 1\n"
+        "property float x\nproperty float y\nproperty float z\nend_header\n1 2 3\n",
+        "b.ply");
+    ASSERT_EQ(w.count, 1u);
+    EXPECT_EQ(w.find("z")->values, std::vector<double>{3});
 }
 
 // A scene with a particle file: painted, its colour used as asked, and a broken file refused
