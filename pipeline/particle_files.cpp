@@ -47,8 +47,11 @@ std::vector<const Column*> attribute(const PlyVertices& v, const std::string& so
             const Column* c = v.find(n);
             if (!c)
                 throw InputError(source, "",
-                                 std::string("no vertex property \"") + n + "\" (the scene's " +
-                                     key + " names it)");
+                                 std::string("no vertex property \"") + n + "\" (" +
+                                     (std::string(key) == "position"
+                                          ? std::string("a particle file needs x, y and z")
+                                          : std::string("/particles/N/") + key + " names it") +
+                                     ")");
             out.push_back(c);
         }
         return out;

@@ -543,6 +543,21 @@ void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
                   visit_particle_file(p, r);
                   if (!p.material_name.empty())
                       p.material = material(p.material_name, ptr + "/material");
+                  // Property names: one for a size or a label, three for a normal or a colour.
+                  auto names = [&](const char* key, const std::string& v, size_t n) {
+                      if (v.empty() || v == "none") return;
+                      const size_t got =
+                          static_cast<size_t>(std::count(v.begin(), v.end(), ',')) + 1;
+                      if (got != n)
+                          problems.push_back(
+                              {ptr + "/" + key,
+                               "expected " +
+                                   std::string(n == 1 ? "one property name"
+                                                      : "three property names, comma-separated") +
+                                   ", \"none\" or \"\", got \"" + v + "\""});
+                  };
+                  names("size", p.size, 1), names("label", p.label, 1);
+                  names("normal", p.normal, 3), names("color", p.color, 3);
                   s.particles.push_back(p);
               });
 }

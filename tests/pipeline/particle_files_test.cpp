@@ -181,7 +181,7 @@ TEST(ParticleFiles, HostileFilesNameTheVertexAndProperty) {
         {write_ply(tiny_size, "binary_little_endian"),
          "vertex 2 property pscale: a stroke 2e-45 wide, too narrow to paint"},
         {write_ply(int_color, "ascii"), "property red: a colour is uchar, ushort, float"},
-        {write_ply(no_z, "ascii"), "no vertex property \"z\""},
+        {write_ply(no_z, "ascii"), "no vertex property \"z\" (a particle file needs x, y and z)"},
         {"ply\nformat ascii 1.0\nelement vertex 1\nproperty uchar x\nproperty float y\n"
          "property float z\nend_header\n300 0 0\n",
          "vertex 0 property x: expected a whole number that fits uchar, got \"300\""},
@@ -328,6 +328,20 @@ TEST_F(ParticleScene, ABrokenFileIsOneLineAndNothingIsWritten) {
     EXPECT_EQ(n.exit_code, 2);
     EXPECT_NE(n.err.find("/particles/0/material: no material \"moss\""), std::string::npos)
         << n.err;
+    // Attribute names are counted with the scene: a normal is three properties.
+    write("s.json", R"({"materials": {"grass": {"shader": "grass"}},
+                        "particles": [{"file": "cloud.ply", "material": "grass",
+                                       "normal": "N", "size": "a,b"}]})");
+    const auto a =
+        test::run_pleinair("render " + (dir / "s.json").string() + " -o " + out.string());
+    EXPECT_EQ(a.exit_code, 2);
+    EXPECT_NE(a.err.find("/particles/0/size: expected one property name, \"none\" or \"\", got "
+                         "\"a,b\""),
+              std::string::npos)
+        << a.err;
+    EXPECT_NE(a.err.find("/particles/0/normal: expected three property names, comma-separated"),
+              std::string::npos)
+        << a.err;
 }
 
 }  // namespace
