@@ -3,6 +3,8 @@
 // that fade with distance and base strokes that never do.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <glm/ext/vector_int2.hpp>
@@ -76,8 +78,13 @@ struct SurfaceParticles {
     void truncate(size_t n) {
         each_array([n](auto& a) { a.resize(n); });
     }
-    void append(const SurfaceParticles& o) {
-        auto cat = [](auto& a, const auto& b) { a.insert(a.end(), b.begin(), b.end()); };
+    // Appends o's particles [first, first + n), or all of them.
+    void append(const SurfaceParticles& o, size_t first = 0, size_t n = ~size_t{0}) {
+        n = std::min(n, o.size() - std::min(first, o.size()));
+        auto cat = [&](auto& a, const auto& b) {
+            a.insert(a.end(), b.begin() + static_cast<std::ptrdiff_t>(first),
+                     b.begin() + static_cast<std::ptrdiff_t>(first + n));
+        };
         cat(position, o.position), cat(normal_code, o.normal_code);
         cat(random_code, o.random_code), cat(uv_code, o.uv_code);
         cat(height_code, o.height_code), cat(material, o.material), cat(label, o.label);

@@ -167,15 +167,7 @@ void add_imported(const SceneDesc& s, BuiltLandscape& out) {
         for (size_t first = 0; first < all.size(); first += kImportedChunk) {
             const size_t n = std::min(kImportedChunk, all.size() - first);
             SurfaceParticles c;
-            c.reserve(n);
-            auto copy = [&](auto& to, const auto& from) {
-                to.assign(from.begin() + static_cast<std::ptrdiff_t>(first),
-                          from.begin() + static_cast<std::ptrdiff_t>(first + n));
-            };
-            copy(c.position, all.position), copy(c.normal_code, all.normal_code);
-            copy(c.random_code, all.random_code), copy(c.uv_code, all.uv_code);
-            copy(c.height_code, all.height_code), copy(c.material, all.material);
-            copy(c.label, all.label), copy(c.fade_code, all.fade_code);
+            c.append(all, first, n);
             out.chunks.push_back(std::move(c));
             out.chunk_size.push_back(1.0f);
             out.chunk_source.push_back({p.particles.get(), first, p.color_amount});

@@ -1,6 +1,8 @@
 // MaterialTable: the families' leaf and bark shaders, then the scene's surface materials.
 #include "pipeline/materials.h"
 
+#include <algorithm>
+
 namespace pleinair {
 
 MaterialTable::MaterialTable(const SceneDesc& scene)
@@ -8,8 +10,8 @@ MaterialTable::MaterialTable(const SceneDesc& scene)
     auto add = [&](SpriteKind kind, const StrokeShaderParams& shader, const Palette& palette,
                    const SurfaceShaderParams* surface) {
         materials_.push_back({kind, &shader, &palette, surface,
-                              make_edge_table(shader.stroke_fullness),
-                              make_dry_brush_table(shader)});
+                              make_edge_table(shader.stroke_fullness), make_dry_brush_table(shader),
+                              std::max(luminance(palette_lookup(palette, 0.5f)), 1e-3f)});
     };
     for (const Family& f : scene.families) {
         add(SpriteKind::kLeaf, f.leaf_shader, f.leaf_palette, nullptr);

@@ -23,6 +23,9 @@ struct SpriteMaterial {
     const SurfaceShaderParams* surface = nullptr;  // surface materials only
     EdgeTable edge;
     DryBrushTable dry_brush;  // how its strokes fade (composite.cpp)
+    // The luminance of the palette's middle colour: a particle's own colour is painted relative
+    // to it (StrokeConstants::own).
+    float mid_luminance = 1;
 };
 
 // An index into a MaterialTable.

@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 
 #include "generators/rng.h"
+#include "generators/tree_params.h"
 #include "pipeline/error.h"
 #include "pipeline/ply.h"
 
@@ -71,12 +72,6 @@ std::vector<const Column*> attribute(const PlyVertices& v, const std::string& so
     throw InputError(source, "vertex " + std::to_string(i) + " property " + c.name, what);
 }
 
-std::string number(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.9g", v);
-    return buf;
-}
-
 }  // namespace
 
 ImportedParticles import_particles(const std::string& bytes, const std::string& source,
@@ -112,9 +107,9 @@ ImportedParticles import_particles(const std::string& bytes, const std::string& 
         for (int k = 0; k < 3; ++k)
             if (!(std::abs(w[k]) <= max_coordinate))
                 bad(source, i, *xyz[static_cast<size_t>(k)],
-                    "placed at " + number(w[k]) +
+                    "placed at " + format_number(w[k]) +
                         ", beyond the world pleinair supports (every coordinate within +-" +
-                        number(max_coordinate) + ")");
+                        format_number(max_coordinate) + ")");
         s.position.push_back(glm::vec3(w));
 
         glm::vec3 n = facing_sun;
@@ -131,7 +126,7 @@ ImportedParticles import_particles(const std::string& bytes, const std::string& 
         uint64_t id = i;
         if (!label.empty()) {
             const double l = label[0]->values[i];
-            if (l < 0) bad(source, i, *label[0], "a label must be >= 0, got " + number(l));
+            if (l < 0) bad(source, i, *label[0], "a label must be >= 0, got " + format_number(l));
             id = static_cast<uint64_t>(l);
         }
         const uint64_t h = hash_keys(file_key, static_cast<uint64_t>(Purpose::kImported), id);
@@ -149,15 +144,15 @@ ImportedParticles import_particles(const std::string& bytes, const std::string& 
 
         if (!size.empty()) {
             const double sz = size[0]->values[i];
-            if (!(sz > 0)) bad(source, i, *size[0], "a size must be > 0, got " + number(sz));
+            if (!(sz > 0)) bad(source, i, *size[0], "a size must be > 0, got " + format_number(sz));
             const double width = sz * d.size_to_width * d.scale;
             if (!(width <= max_coordinate))
                 bad(source, i, *size[0],
-                    "a stroke " + number(width) + " wide, larger than the world");
+                    "a stroke " + format_number(width) + " wide, larger than the world");
             // Fuzzing found a size of 1e-45: > 0 in double, a stroke of width 0 in float.
             if (!(static_cast<float>(width) >= 1e-30f))
                 bad(source, i, *size[0],
-                    "a stroke " + number(width) +
+                    "a stroke " + format_number(width) +
                         " wide, too narrow to paint (the least is 1e-30)");
             out.width.push_back(static_cast<float>(width));
         }
@@ -177,7 +172,8 @@ ImportedParticles import_particles(const std::string& bytes, const std::string& 
                                      "a colour is uchar, ushort, float or double, got " + col.type);
                 if (!(x >= 0 && x <= full))
                     bad(source, i, col,
-                        "a colour must be in [0, " + number(full) + "], got " + number(x));
+                        "a colour must be in [0, " + format_number(full) + "], got " +
+                            format_number(x));
                 c[k] = col.integer ? srgb_to_linear(static_cast<float>(x / full))
                                    : static_cast<float>(x);
             }

@@ -135,8 +135,7 @@ void shade_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in,
         surface_frequencies(*m.surface, h, out.k.frequ_s, out.k.frequ_t);
         out.object_id = 0x10000u + S.material[in.index];
         if (in.own_color) {
-            const float mid = std::max(luminance(palette_lookup(*m.palette, 0.5f)), 1e-3f);
-            out.k.own = *in.own_color / mid;
+            out.k.own = *in.own_color / m.mid_luminance;
             out.k.own_amount = in.own_amount;
         }
     } else {
