@@ -5,6 +5,8 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 
+#include "shading/portable_math.h"
+
 namespace pleinair {
 
 namespace {
@@ -76,7 +78,7 @@ void sprout(TreeMesh& tm, int parent_index, int s, int j, int level, uint64_t ke
     for (int m0 = 0; m0 < 4; ++m0) {
         double cost = 0;
         for (int i = 0; i < 4; ++i) {
-            const double theta = std::atan2(glm::dot(p[i] - c, e2), glm::dot(p[i] - c, e1));
+            const double theta = pmath::atan2(glm::dot(p[i] - c, e2), glm::dot(p[i] - c, e1));
             const double d = std::remainder(theta - radians(45.0 + 90.0 * (m0 + i)), 2.0 * M_PI);
             cost += d * d;
         }
@@ -85,13 +87,13 @@ void sprout(TreeMesh& tm, int parent_index, int s, int j, int level, uint64_t ke
     std::array<glm::dvec3, 4> pos;
     for (int i = 0; i < 4; ++i) {
         const double phi = radians(45.0 + 90.0 * (best_m0 + i));
-        pos[i] = c1 + half_diag * (std::cos(phi) * e1 + std::sin(phi) * e2);
+        pos[i] = c1 + half_diag * (pmath::cos(phi) * e1 + pmath::sin(phi) * e2);
     }
     if (std::min({pos[0].y, pos[1].y, pos[2].y, pos[3].y}) < 0) return;
 
     // Heading: the parent's axis turned toward the face normal by `angle`.
     glm::dvec3 n_perp = safe_normalize(n - axis * glm::dot(n, axis), n);
-    glm::dvec3 heading = std::cos(radians(angle)) * axis + std::sin(radians(angle)) * n_perp;
+    glm::dvec3 heading = pmath::cos(radians(angle)) * axis + pmath::sin(radians(angle)) * n_perp;
 
     const double parent_radius_here = parent_r;
     std::array<FaceHandle, 4> sides;

@@ -8,6 +8,7 @@
 
 #include "generators/tree_mesh.h"
 #include "shading/curves.h"
+#include "shading/portable_math.h"
 
 namespace pleinair {
 
@@ -104,7 +105,7 @@ LeafParticles emit_leaves(const TreeMesh& tm, const TreeParams& params, uint64_t
         // Start direction: uniform over the cone of aperture branch_angle about the vertex's
         // outward normal.
         const double half = 0.5 * radians(sample(lp.branch_angle, rng));
-        const double cos_t = 1.0 - rand1(rng) * (1.0 - std::cos(half));
+        const double cos_t = 1.0 - rand1(rng) * (1.0 - pmath::cos(half));
         const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
         glm::dvec3 dir = turn_direction(outward, cos_t, sin_t, rand1(rng));
         const int steps = sample_whole(lp.branching_steps, rng);

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "shading/portable_math.h"
+
 namespace pleinair {
 
 // SplitMix64's finaliser: a bijective 64-bit mix with full avalanche.
@@ -86,13 +88,14 @@ inline double rand_gaussian(Rng& rng) {
     }
     double u1 = 1.0 - rand1(rng);  // (0, 1]: log is finite
     double u2 = rand1(rng);
-    double radius = std::sqrt(-2.0 * std::log(u1));
-    // Single-precision angle: the pair is for shaping parameters, and sincosf is several times
-    // cheaper than sincos in the leaf loop.
-    float angle = static_cast<float>(2.0 * M_PI * u2);
-    rng.spare = radius * std::sin(angle);
+    // pleinair's own log and sincos: libm's differ in the last bit between C libraries, and a
+    // draw decides a branch.
+    double radius = std::sqrt(-2.0 * pmath::log(u1));
+    double s, c;
+    pmath::sincos(2.0 * pmath::kPi * u2, s, c);
+    rng.spare = radius * s;
     rng.has_spare = true;
-    return radius * std::cos(angle);
+    return radius * c;
 }
 
 }  // namespace pleinair

@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "generators/rng.h"
+#include "shading/portable_math.h"
 
 namespace pleinair {
 
@@ -53,7 +54,7 @@ std::vector<ScatteredTree> scatter_trees(const TerrainParams& terrain, uint64_t 
     };
     add(glm::dvec2(R));  // the centre
     std::vector<int> active{0};
-    const double cos_max = std::cos(std::clamp(p.max_slope, 0.0, 90.0) * M_PI / 180.0);
+    const double cos_max = pmath::cos(std::clamp(p.max_slope, 0.0, 90.0) * M_PI / 180.0);
     auto plant = [&](const glm::dvec2& q) {
         double x = p.center.x - R + q.x, z = p.center.y - R + q.y;
         double y = terrain_height(terrain, terrain_seed, x, z);
@@ -84,7 +85,7 @@ std::vector<ScatteredTree> scatter_trees(const TerrainParams& terrain, uint64_t 
         bool found = false;
         for (int k = 0; k < 30; ++k) {
             double ang = rand_range(rng, 0.0, 2 * M_PI), dist = r * (1 + rand1(rng));
-            glm::dvec2 q = points[a] + dist * glm::dvec2(std::cos(ang), std::sin(ang));
+            glm::dvec2 q = points[a] + dist * glm::dvec2(pmath::cos(ang), pmath::sin(ang));
             if (!inside(q) || !far_enough(q)) continue;
             add(q);
             active.push_back(static_cast<int>(points.size()) - 1);

@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "generators/rng.h"
+#include "shading/portable_math.h"
 
 namespace pleinair {
 
@@ -38,7 +39,7 @@ void emit_one(Rng& rng, const SurfaceStrokeParams& p, const glm::vec3& pos, cons
     // Uniform on the sphere: z uniform in [-1, 1], angle uniform.
     double z = rand_range(rng, -1.0, 1.0), a = rand_range(rng, 0.0, 2 * M_PI);
     double r = std::sqrt(std::max(0.0, 1 - z * z));
-    glm::vec3 rn(static_cast<float>(r * std::cos(a)), static_cast<float>(r * std::sin(a)),
+    glm::vec3 rn(static_cast<float>(r * pmath::cos(a)), static_cast<float>(r * pmath::sin(a)),
                  static_cast<float>(z));
     double fade_draw = rand1(rng), len_draw = rand_gaussian(rng);
     out.position.push_back(pos + n * static_cast<float>(d));

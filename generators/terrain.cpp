@@ -7,6 +7,7 @@
 
 #include "generators/rng.h"
 #include "shading/noise.h"
+#include "shading/portable_math.h"
 
 namespace pleinair {
 
@@ -51,8 +52,8 @@ double height_at(const TerrainParams& p, NoiseOffset o, double x, double z) {
     double h = p.base_height;
     for (const Hill& hill : p.hills) {
         if (!(hill.radius > 0)) continue;
-        double d = std::hypot(x - hill.center.x, z - hill.center.y) / hill.radius;
-        if (d < 1) h += hill.height * 0.5 * (1 + std::cos(M_PI * d));
+        double d = pmath::hypot(x - hill.center.x, z - hill.center.y) / hill.radius;
+        if (d < 1) h += hill.height * 0.5 * (1 + pmath::cos(M_PI * d));
     }
     if (p.noise_amplitude != 0) {
         // Noise coordinates relative to the terrain's corner, so a terrain far from the origin

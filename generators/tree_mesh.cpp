@@ -5,6 +5,8 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 
+#include "shading/portable_math.h"
+
 namespace pleinair {
 
 using OpenMesh::FaceHandle;
@@ -23,7 +25,7 @@ glm::dvec3 rotate_between(const glm::dvec3& v, const glm::dvec3& a, const glm::d
         if (c > 0) return v;
         return rotate(v, any_perpendicular(a), M_PI);
     }
-    return rotate(v, axis / s, std::atan2(s, c));
+    return rotate(v, axis / s, pmath::atan2(s, c));
 }
 
 }  // namespace
@@ -31,7 +33,7 @@ glm::dvec3 rotate_between(const glm::dvec3& v, const glm::dvec3& a, const glm::d
 double radians(double degrees) { return degrees * (M_PI / 180.0); }
 
 glm::dvec3 rotate(const glm::dvec3& v, const glm::dvec3& k, double angle) {
-    double c = std::cos(angle), s = std::sin(angle);
+    double c = pmath::cos(angle), s = pmath::sin(angle);
     return v * c + glm::cross(k, v) * s + k * (glm::dot(k, v) * (1.0 - c));
 }
 
@@ -53,17 +55,17 @@ glm::dvec3 safe_normalize(const glm::dvec3& v, const glm::dvec3& fallback) {
 
 glm::dvec3 turn_direction(const glm::dvec3& v, double cos_t, double sin_t, double turns) {
     // Rotating v by t about the unit axis a = cos(az) u + sin(az) w (a perpendicular to v)
-    // gives v cos t + (a x v) sin t, and a x v = sin(az) u - cos(az) w. Single-precision trig:
-    // a direction needs no more, and it is several times cheaper in the leaf loop.
+    // gives v cos t + (a x v) sin t, and a x v = sin(az) u - cos(az) w.
     const auto [u, w] = orthonormal_basis(v);
-    const float az = static_cast<float>(2.0 * M_PI * turns);
-    const double sa = std::sin(az), ca = std::cos(az);
+    double sa, ca;
+    pmath::sincos(2.0 * pmath::kPi * turns, sa, ca);
     return safe_normalize(v * cos_t + (sa * u - ca * w) * sin_t, v);
 }
 
 glm::dvec3 wobble_direction(const glm::dvec3& v, double degrees, double turns) {
-    const float t = static_cast<float>(radians(degrees));
-    return turn_direction(v, std::cos(t), std::sin(t), turns);
+    double s, c;
+    pmath::sincos(radians(degrees), s, c);
+    return turn_direction(v, c, s, turns);
 }
 
 glm::dvec3 apply_tropism(const glm::dvec3& heading, const glm::dvec3& direction, double strength) {
@@ -138,8 +140,8 @@ void grow_limb(TreeMesh& tm, int limb_index, const StepParams& sp, const StopRul
         // Limit the turn so the inner side of the new segment cannot fold back through the
         // previous ring: tan(turn) * r < len.
         glm::dvec3 dir = heading;
-        double angle = std::acos(std::clamp(glm::dot(L.direction, heading), -1.0, 1.0));
-        double max_turn = std::atan2(0.8 * len, r);
+        double angle = pmath::acos(std::clamp(glm::dot(L.direction, heading), -1.0, 1.0));
+        double max_turn = pmath::atan2(0.8 * len, r);
         if (angle > max_turn) {
             glm::dvec3 axis = glm::cross(L.direction, heading);
             double s = glm::length(axis);

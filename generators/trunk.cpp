@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "shading/portable_math.h"
+
 namespace pleinair {
 
 void grow_trunk(TreeMesh& tm, const TreeParams& p, uint64_t seed) {
@@ -21,7 +23,7 @@ void grow_trunk(TreeMesh& tm, const TreeParams& p, uint64_t seed) {
     Ring a, b;
     for (int j = 0; j < 4; ++j) {
         double ang = radians(45.0 + 90.0 * j);
-        double z = r * std::cos(ang), x = r * std::sin(ang);
+        double z = r * pmath::cos(ang), x = r * pmath::sin(ang);
         a[j] = m.add_vertex({x, 0.0, z});
         b[j] = m.add_vertex({x, size, z});
     }

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 
+#include "shading/portable_math.h"
+
 namespace pleinair {
 
 std::string make_camera(const CameraParams& p, Camera& c) {
@@ -29,7 +31,7 @@ std::string make_camera(const CameraParams& p, Camera& c) {
     c.up = glm::cross(c.right, c.forward);
     c.width = p.width;
     c.height = p.height;
-    c.focal_px = 0.5 * p.height / std::tan(0.5 * p.fov * M_PI / 180.0);
+    c.focal_px = 0.5 * p.height / pmath::tan(0.5 * p.fov * M_PI / 180.0);
     c.focus_distance = dist;
     c.near_depth = 1e-4 * dist;
     return "";

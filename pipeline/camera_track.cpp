@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "generators/tree_params.h"
+#include "shading/portable_math.h"
 
 namespace pleinair {
 
@@ -391,10 +392,11 @@ glm::dvec3 sun_at(const std::vector<SunKey>& keys, double t) {
     const double u = (t - keys[i].time) / (keys[i + 1].time - keys[i].time);
     const glm::dvec3 a = glm::normalize(keys[i].direction);
     const glm::dvec3 b = glm::normalize(keys[i + 1].direction);
-    const double angle = std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0));
-    glm::dvec3 d = std::sin(angle) > 1e-9
-                       ? (std::sin((1 - u) * angle) * a + std::sin(u * angle) * b) / std::sin(angle)
-                       : a + (b - a) * u;  // nearly the same direction
+    const double angle = pmath::acos(std::clamp(glm::dot(a, b), -1.0, 1.0));
+    glm::dvec3 d =
+        pmath::sin(angle) > 1e-9
+            ? (pmath::sin((1 - u) * angle) * a + pmath::sin(u * angle) * b) / pmath::sin(angle)
+            : a + (b - a) * u;  // nearly the same direction
     return glm::normalize(d);
 }
 

@@ -11,6 +11,7 @@
 #include "pipeline/lod.h"
 #include "pipeline/paint.h"
 #include "shading/color.h"
+#include "shading/portable_math.h"
 
 namespace pleinair {
 
@@ -167,7 +168,7 @@ void area_and_lightness(const Traced& t, double& area, double& lightness) {
         if (!(cover > 0)) continue;
         const float* c = &t.frame.rgba[4 * p];
         const double y = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
-        const double f = y > 216.0 / 24389.0 ? std::cbrt(y) : (24389.0 / 27.0 * y + 16) / 116;
+        const double f = y > 216.0 / 24389.0 ? pmath::cbrt(y) : (24389.0 / 27.0 * y + 16) / 116;
         a += cover;
         l += cover * (116 * f - 16);
     }

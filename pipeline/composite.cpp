@@ -14,6 +14,7 @@
 
 #include "pipeline/shot.h"
 #include "shading/curves.h"
+#include "shading/portable_math.h"
 #include "shading/stroke_kernel.h"
 
 namespace pleinair {
@@ -34,7 +35,7 @@ Color background_color(const Background& b, const Camera& cam, const Color lin[4
     }
     if (b.texture > 0) {
         // Attached to the view direction, so it does not swim when the camera moves.
-        float az = static_cast<float>(std::atan2(dir.x, -dir.z));
+        float az = static_cast<float>(pmath::atan2(dir.x, -dir.z));
         float n = fractal_noise(az * 9.0f + 50.0f, e * 9.0f + 50.0f, 3);
         c *= 1.0f + 2.0f * b.texture * (n - 0.5f);
     }

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "generators/quad_mesh.h"
+#include "shading/portable_math.h"
 
 namespace pleinair {
 
@@ -92,9 +93,9 @@ Frame paint_contact_sheet(const Family& family, const std::vector<Tree>& trees,
         // cell, with a margin, seen from slightly above its middle.
         glm::dvec3 c = b.position + glm::dvec3(0.5f * (bb.min + bb.max));
         glm::dvec3 half = glm::dvec3(0.5f * (bb.max - bb.min));
-        double across = std::max(std::hypot(half.x, half.z), 1e-6), up = std::max(half.y, 1e-6);
+        double across = std::max(pmath::hypot(half.x, half.z), 1e-6), up = std::max(half.y, 1e-6);
         const double fov = 30.0;
-        double tan_v = std::tan(0.5 * fov * M_PI / 180.0);
+        double tan_v = pmath::tan(0.5 * fov * M_PI / 180.0);
         double tan_h = tan_v * cell_w / cell_h;
         double d = 0.5 * across + 1.08 * std::max(across / tan_h, up / tan_v);
         CameraParams cp;

@@ -17,8 +17,7 @@ FrameRange parse_frame_range(const std::string& text, const std::string& option)
     static const std::regex form(R"(^(\d{1,9})(?:-(\d{1,9})(?:x(\d{1,9}))?)?$)");
     std::smatch m;
     const std::string expected =
-        "expected a frame N or a range A-B or A-BxSTEP (A <= B, STEP >= 1), got \"" +
-        text + "\"";
+        "expected a frame N or a range A-B or A-BxSTEP (A <= B, STEP >= 1), got \"" + text + "\"";
     if (!std::regex_match(text, m, form)) throw InputError(option, "", expected);
     FrameRange r;
     r.first = std::stoi(m[1]);

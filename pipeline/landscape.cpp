@@ -10,6 +10,7 @@
 #include "generators/rock.h"
 #include "pipeline/camera_track.h"
 #include "shading/noise.h"
+#include "shading/portable_math.h"
 
 namespace pleinair {
 
@@ -60,7 +61,7 @@ void emit_near_field(const SceneDesc& s, const SurfaceStrokeParams& tp, float si
         const int z1 = static_cast<int>(std::floor((e.y + reach) / cell));
         for (int x = x0; x <= x1; ++x)
             for (int z = z0; z <= z1; ++z)
-                if (std::hypot((x + 0.5) * cell - e.x, (z + 0.5) * cell - e.y) < reach)
+                if (pmath::hypot((x + 0.5) * cell - e.x, (z + 0.5) * cell - e.y) < reach)
                     picked.emplace(x, z);
     }
     std::vector<glm::ivec2> cells;
@@ -144,7 +145,7 @@ uint32_t terrain_material_at(const SceneDesc& s, const glm::dvec3& world) {
     for (const MaterialRegion& r : t.regions) {
         // The rim wanders by a quarter of the radius (slow noise), so a region reads as a
         // patch of ground, not a drawn circle.
-        const double d = std::hypot(world.x - r.center.x, world.z - r.center.y) / r.radius;
+        const double d = pmath::hypot(world.x - r.center.x, world.z - r.center.y) / r.radius;
         const float rim =
             0.75f + 0.5f * noise(static_cast<float>(world.x - r.center.x) * 0.35f + 31.7f,
                                  static_cast<float>(world.z - r.center.y) * 0.35f + 11.3f);

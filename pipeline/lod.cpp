@@ -13,6 +13,7 @@
 #include "pipeline/paint.h"
 #include "pipeline/shot.h"
 #include "shading/curves.h"
+#include "shading/portable_math.h"
 #include "shading/stroke_shader.h"
 
 namespace pleinair {
@@ -64,8 +65,8 @@ namespace {
 // A direction's continuous bin coordinates: elevation and azimuth, each in bin units.
 void direction_bins(const glm::vec3& v, float r, float& e, float& a) {
     constexpr float kPi = 3.14159265358979f;
-    const float el = std::asin(std::clamp(v.y / r, -1.0f, 1.0f));  // -pi/2 .. pi/2
-    const float az = std::atan2(v.z, v.x);                         // -pi .. pi
+    const float el = pmath::asin(std::clamp(v.y / r, -1.0f, 1.0f));  // -pi/2 .. pi/2
+    const float az = pmath::atan2(v.z, v.x);                         // -pi .. pi
     e = (el / kPi + 0.5f) * kElevationBins - 0.5f;
     a = (az / (2 * kPi) + 0.5f) * kAzimuthBins - 0.5f;
 }
@@ -107,7 +108,7 @@ void radial_spread(const LeafParticles& L, const std::vector<float>& fade, const
     // extent stays put: r -> R (r / R)^gamma.
     auto exponent = [](double rms_all, double rms_kept, double r) {
         if (!(rms_kept < rms_all) || !(rms_all < r) || !(rms_kept > 0)) return 1.0;
-        return std::clamp(std::log(rms_all / r) / std::log(rms_kept / r), 0.05, 1.0);
+        return std::clamp(pmath::log(rms_all / r) / pmath::log(rms_kept / r), 0.05, 1.0);
     };
     const double whole = exponent(std::sqrt(ar / aw), std::sqrt(kr / kw), reach);
     t.center = center;
@@ -188,7 +189,7 @@ float spread_factor(const TreeLod& t, float r, float e, float a) {
     // r -> R (r / R)^gamma inside the bins' extent R: survivors move out, the silhouette does
     // not. Near the centre the move is bounded by max_spread.
     if (!(r < g.y) || !(g.x < 1.0f)) return 1.0f;
-    return std::min(t.max_spread, std::pow(r / g.y, g.x - 1.0f));
+    return std::min(t.max_spread, pmath::pow(r / g.y, g.x - 1.0f));
 }
 
 ParticleLod particle_lod(const Shot& shot, const FrameLod& lod, size_t item, SpriteKind kind,
@@ -328,8 +329,8 @@ FrameLod level_of_detail(const Shot& shot, const FrameView& view, const RenderSe
         // below also widens the crown the survivors fill: with 1 / u the far oak of tree-dolly
         // covered 4.3% more than at full detail, with u^-0.9 0.2% less.
         t.kept = static_cast<float>(sum / static_cast<double>(L.size()));
-        const float floor = std::pow(max_growth, -1.0f / kGrowthPower);
-        t.growth = std::min(max_growth, std::pow(std::max(t.kept, floor), -kGrowthPower));
+        const float floor = pmath::pow(max_growth, -1.0f / kGrowthPower);
+        t.growth = std::min(max_growth, pmath::pow(std::max(t.kept, floor), -kGrowthPower));
         radial_spread(L, alpha, b.tree.center, max_growth, t);
     });
     return lod;

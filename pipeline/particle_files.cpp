@@ -9,6 +9,7 @@
 #include "generators/tree_params.h"
 #include "pipeline/error.h"
 #include "pipeline/ply.h"
+#include "shading/portable_math.h"
 
 namespace pleinair {
 
@@ -136,7 +137,7 @@ ImportedParticles import_particles(const std::string& bytes, const std::string& 
         const double z = rand_range(rng, -1.0, 1.0), a = rand_range(rng, 0.0, 2 * M_PI);
         const double r = std::sqrt(std::max(0.0, 1 - z * z));
         s.random_code.push_back(
-            encode_unit(glm::vec3(glm::dvec3(r * std::cos(a), r * std::sin(a), z))));
+            encode_unit(glm::vec3(glm::dvec3(r * pmath::cos(a), r * pmath::sin(a), z))));
         s.uv_code.push_back(0);
         s.height_code.push_back(encode_unorm(1.0f));
         s.material.push_back(static_cast<uint16_t>(d.material));

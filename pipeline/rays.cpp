@@ -16,6 +16,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "shading/portable_math.h"
+
 namespace pleinair {
 
 FlushDenormals::FlushDenormals() : saved_(_mm_getcsr()) {
@@ -114,7 +116,7 @@ void caster_filter(const RTCFilterFunctionNArguments* args) {
             }
         } else if (a > 0.0f) {
             sc->depth += static_cast<uint64_t>(
-                std::lround(-std::log2(std::max(1.0f - a, 1e-6f)) * 65536.0f));
+                std::lround(-pmath::log2(std::max(1.0f - a, 1e-6f)) * 65536.0f));
             if (sc->depth >= kOpaqueDepth) {
                 sc->blocked = true;
                 continue;  // accept: nothing meaningful gets through
@@ -155,8 +157,13 @@ void set_quad_buffers(RTCGeometry g, const QuadMesh& mesh, const glm::dvec3& shi
         for (int k = 0; k < 4; ++k) q[4 * i + k] = mesh.quads[i][k];
 }
 
+std::string& device_config() {
+    static std::string config = kPortableRayDevice;
+    return config;
+}
+
 RTCDevice new_device() {
-    RTCDevice d = rtcNewDevice(nullptr);
+    RTCDevice d = rtcNewDevice(device_config().empty() ? nullptr : device_config().c_str());
     if (!d)
         throw std::runtime_error("Embree: cannot create a device (error " +
                                  std::to_string(rtcGetDeviceError(nullptr)) + ")");
@@ -164,6 +171,8 @@ RTCDevice new_device() {
 }
 
 }  // namespace
+
+void set_ray_device_config(const std::string& config) { device_config() = config; }
 
 struct RayMeshes::Impl {
     RTCDevice device = nullptr;
@@ -379,7 +388,7 @@ float RayScene::transmittance(const glm::dvec3& origin, const glm::vec3& dir, Sh
     fill_ray(r, origin, impl_->anchor, dir, tmax, n);
     rtcOccluded1(impl_->casters, &sc.ctx, &r);
     if (r.tfar < 0 || sc.blocked) return 0.0f;
-    return std::exp2(-static_cast<float>(sc.depth) / 65536.0f);
+    return pmath::exp2(-static_cast<float>(sc.depth) / 65536.0f);
 }
 
 }  // namespace pleinair

@@ -11,6 +11,7 @@
 #include <glm/vec3.hpp>
 #include <limits>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "generators/quad_mesh.h"
@@ -18,6 +19,17 @@
 #include "shading/stroke_shader.h"
 
 namespace pleinair {
+
+// Embree's device configuration (rtcNewDevice's argument). Left to itself Embree picks the
+// widest instruction set the CPU has, and its BVH and hit tests differ with it (4- or 8-wide
+// nodes, FMA or not), so the same scene would paint other bytes on another CPU. pleinair pins
+// SSE2, which every x86-64 CPU runs, at a cost in speed measured by tests/bench/bench_rays.cpp
+// (BENCHMARKS.md); `--fast-rays` gives the choice back to Embree.
+inline constexpr const char* kPortableRayDevice = "isa=sse2";
+
+// The configuration given to every device created after this call (empty: Embree's defaults).
+// For tests and benchmarks; not thread-safe, so set it before building shots.
+void set_ray_device_config(const std::string& config);
 
 // The offset that lifts a ray origin off the surface it starts on: 32 float ulps of its
 // largest world coordinate, never less than those of 1.

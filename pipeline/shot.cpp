@@ -9,6 +9,8 @@
 #include <glm/geometric.hpp>
 #include <limits>
 
+#include "shading/portable_math.h"
+
 namespace pleinair {
 
 namespace {
@@ -66,7 +68,7 @@ std::vector<std::vector<float>> trace_sun_light(const Shot& shot) {
 }  // namespace
 
 TreePlacement placement(const BuiltTree& b) {
-    return {std::cos(b.rotation * M_PI / 180.0), std::sin(b.rotation * M_PI / 180.0), b.scale,
+    return {pmath::cos(b.rotation * M_PI / 180.0), pmath::sin(b.rotation * M_PI / 180.0), b.scale,
             b.position};
 }
 
@@ -104,7 +106,8 @@ void leaf_casters(const SceneDesc& scene, const BuiltTree& b, const glm::vec3& s
         c.center = pl.place(L.position[j]);
         const float jitter = stroke_size_jitter(p, L.label[j]);
         const double ang = stroke_angle_jitter(p, L.label[j]);
-        const float ca = static_cast<float>(std::cos(ang)), sa = static_cast<float>(std::sin(ang));
+        const float ca = static_cast<float>(pmath::cos(ang)),
+                    sa = static_cast<float>(pmath::sin(ang));
         c.axis_s = ca * a0 + sa * b0;
         c.axis_t = -sa * a0 + ca * b0;
         c.half_w = static_cast<float>(0.5 * w * jitter);

@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "pipeline/shot.h"
+#include "shading/portable_math.h"
 
 namespace pleinair {
 
@@ -95,18 +96,18 @@ bool place_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in,
     // as seen from the eye, so the eye's travel changes their ranges' difference by at most the
     // sum of their swap speeds.
     out.swap_speed =
-        static_cast<float>(c.eye_speed * std::hypot(out.half_w, out.half_l) / c.cam.focal_px);
+        static_cast<float>(c.eye_speed * pmath::hypot(out.half_w, out.half_l) / c.cam.focal_px);
     // Stroke direction on screen: along the projected tangent (a normal-free frame, so a limb
     // seen end-on still gets one), jittered by the label.
     double angle = 0;
     if (glm::dot(in.tangent, in.tangent) > 0) {
         glm::dvec3 t(in.tangent);
         double tx = glm::dot(t, c.cam.right), ty = -glm::dot(t, c.cam.up);
-        if (tx * tx + ty * ty > 1e-8) angle = std::atan2(ty, tx) - 0.5 * M_PI;
+        if (tx * tx + ty * ty > 1e-8) angle = pmath::atan2(ty, tx) - 0.5 * M_PI;
     }
     angle += stroke_angle_jitter(p, in.label);
-    out.ax = static_cast<float>(-std::sin(angle));
-    out.ay = static_cast<float>(std::cos(angle));
+    out.ax = static_cast<float>(-pmath::sin(angle));
+    out.ay = static_cast<float>(pmath::cos(angle));
     float ex, ey;
     sprite_extent(out, ex, ey);
     return !(pr.x + ex < 0 || pr.y + ey < 0 || pr.x - ex > c.cam.width || pr.y - ey > c.cam.height);
@@ -344,7 +345,7 @@ void sprite_extent(const Sprite& sp, float& ex, float& ey) {
 // geometry.
 float stroke_screen_px(const Camera& cam, const RenderSettings& r, double world, double z) {
     double p = std::clamp<double>(r.stroke_perspective, 0.0, 1.0);
-    double px = cam.focal_px * world / (std::pow(cam.focus_distance, 1.0 - p) * std::pow(z, p));
+    double px = cam.focal_px * world / (pmath::pow(cam.focus_distance, 1.0 - p) * pmath::pow(z, p));
     return static_cast<float>(px);
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "shading/curves.h"
+#include "shading/portable_math.h"
 
 namespace pleinair {
 
@@ -14,11 +15,11 @@ using Color = glm::vec3;  // linear RGB
 
 inline float srgb_to_linear(float c) {
     c = clamp01(c);
-    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+    return c <= 0.04045f ? c / 12.92f : pmath::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 inline float linear_to_srgb(float c) {
     c = clamp01(c);
-    return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+    return c <= 0.0031308f ? 12.92f * c : 1.055f * pmath::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 inline Color srgb_to_linear(Color c) {
     return {srgb_to_linear(c.x), srgb_to_linear(c.y), srgb_to_linear(c.z)};

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shading/portable_math.h"
+
 namespace pleinair {
 
 // NaN maps to 0, so nothing downstream ever sees it.
@@ -15,7 +17,7 @@ inline float bias(float x, float b) {
     x = clamp01(x);
     b = std::clamp(b, 1e-6f, 1.0f - 1e-6f);
     if (x <= 0.0f) return 0.0f;
-    return std::pow(x, std::log(b) / std::log(0.5f));
+    return pmath::pow(x, pmath::log(b) / pmath::log(0.5f));
 }
 
 // Perlin's gain through (0.5, 0.5): an S-curve, flat at both ends and steep in the middle, for

@@ -11,6 +11,7 @@
 #include "shading/color.h"
 #include "shading/curves.h"
 #include "shading/noise.h"
+#include "shading/portable_math.h"
 
 namespace pleinair {
 
@@ -92,7 +93,7 @@ inline float edge_mask(float s, float t, float stroke_fullness) {
     constexpr float kPi = 3.14159265358979f;
     // Each factor clamped: sin(pi * 1.0f) is -8.7e-8 in float, and two of them multiply to a
     // positive number whose bias is far from 0.
-    float e = clamp01(std::sin(kPi * clamp01(s))) * clamp01(std::sin(kPi * clamp01(t)));
+    float e = clamp01(pmath::sin(kPi * clamp01(s))) * clamp01(pmath::sin(kPi * clamp01(t)));
     return bias(e, stroke_fullness);
 }
 
@@ -109,7 +110,7 @@ inline EdgeTable make_edge_table(float stroke_fullness) {
     EdgeTable t;
     constexpr float kPi = 3.14159265358979f;
     for (int i = 0; i <= EdgeTable::kSize; ++i)
-        t.v[i] = bias(clamp01(std::sin(kPi * static_cast<float>(i) / EdgeTable::kSize)),
+        t.v[i] = bias(clamp01(pmath::sin(kPi * static_cast<float>(i) / EdgeTable::kSize)),
                       stroke_fullness);
     t.v[0] = t.v[EdgeTable::kSize] = 0.0f;
     t.v[EdgeTable::kSize + 1] = 0.0f;
@@ -123,7 +124,7 @@ inline float edge_profile(const EdgeTable& t, float u, float stroke_fullness) {
     int i = static_cast<int>(x);
     if (i == 0 || i >= EdgeTable::kSize - 1) {
         constexpr float kPi = 3.14159265358979f;
-        return bias(clamp01(std::sin(kPi * clamp01(u))), stroke_fullness);
+        return bias(clamp01(pmath::sin(kPi * clamp01(u))), stroke_fullness);
     }
     float f = x - static_cast<float>(i);
     return t.v[i] + f * (t.v[i + 1] - t.v[i]);

@@ -17,6 +17,7 @@
 #include "pipeline/error.h"
 #include "pipeline/limits.h"
 #include "pipeline/partial_files.h"
+#include "pipeline/rays.h"
 #include "pipeline/scene.h"
 
 namespace {
@@ -228,6 +229,11 @@ int main(int argc, char** argv) {
     int threads = 0;
     app.add_option("--threads", threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 1024));
+    bool fast_rays = false;
+    app.add_flag("--fast-rays", fast_rays,
+                 "Let Embree trace with the widest instruction set this CPU has (AVX2, AVX-512) "
+                 "instead of SSE2: shadow rays up to 1.5x faster, but the bytes then depend on "
+                 "the CPU, so machines of a farm may paint a few values differently");
     std::vector<std::string> limit_settings;
     app.add_option("--limit", limit_settings,
                    "Raise (or lower) a limit checked before work starts: NAME=N, repeatable. "
@@ -251,6 +257,7 @@ int main(int argc, char** argv) {
     // From here on outputs are written; an interrupted run removes its temporaries.
     install_partial_cleanup();
 
+    if (fast_rays) set_ray_device_config("");
     std::unique_ptr<tbb::global_control> limit;
     if (threads > 0)
         limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,

@@ -158,6 +158,26 @@ TEST(RenderCli, ManyTilesSameBytesOnOneThreadAndOnMoreThreadsThanCores) {
     EXPECT_EQ(one, test::read_file(dir / "many.png"));
 }
 
+// --fast-rays lets Embree pick its widest instruction set: a few values may move on a CPU with
+// AVX2 or AVX-512 (their BVH and hit tests round differently from SSE2's), no more.
+TEST(RenderCli, FastRaysPaintsWhatThePortableDefaultDoesWithinALevel) {
+    const auto dir = test::temp_dir("render-fast-rays");
+    const std::string scene = "render tests/golden/shadows-per-fragment/scene.json -o ";
+    ASSERT_EQ(run_pleinair(scene + (dir / "portable.png").string()).exit_code, 0);
+    ASSERT_EQ(run_pleinair(scene + (dir / "fast.png").string() + " --fast-rays").exit_code, 0);
+    auto a = OIIO::ImageInput::open((dir / "portable.png").string());
+    auto b = OIIO::ImageInput::open((dir / "fast.png").string());
+    ASSERT_TRUE(a && b);
+    const size_t n = size_t(a->spec().width) * a->spec().height * 3;
+    std::vector<uint8_t> pa(n), pb(n);
+    ASSERT_TRUE(a->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, pa.data()));
+    ASSERT_TRUE(b->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, pb.data()));
+    size_t moved = 0;
+    for (size_t i = 0; i < n; ++i) moved += pa[i] != pb[i];
+    EXPECT_LE(moved, n / 1000);  // at most 0.1% of the values
+    RecordProperty("values_moved", static_cast<int>(moved));
+}
+
 TEST(RenderCli, ExplainPrintsThePlanWithSkippedPasses) {
     auto dir = test::temp_dir("render-explain");
     auto r = run_pleinair(render_small("--explain -o " + (dir / "a.png").string()));

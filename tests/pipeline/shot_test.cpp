@@ -17,6 +17,7 @@
 #include "pipeline/composite.h"
 #include "pipeline/image_io.h"
 #include "pipeline/paint.h"
+#include "pipeline/rays.h"
 #include "pipeline/sprites.h"
 
 namespace pleinair {
@@ -279,6 +280,47 @@ TEST(Shot, SameBytesOnEveryVectorTarget) {
     hwy::SetSupportedTargetsForTest(0);
     EXPECT_GE(targets, 1);
     RecordProperty("targets", targets);
+}
+
+// Left to itself Embree picks the widest instruction set the CPU has, and its BVH and hit tests
+// differ with it (4- or 8-wide nodes, FMA or not): on an AVX-512 machine, frames pinned to AVX2
+// or to SSE differ from its own in a few hundred values. pleinair pins SSE2, which every x86-64
+// CPU runs, so the bytes do not depend on the CPU: the default paints what SSE2 pinned by hand
+// does, for frames of a moving camera and of a moving sun.
+TEST(Shot, EmbreeIsPinnedToOneInstructionSetForEveryCpu) {
+    SceneDesc scene = lit_scene(R"({"samples": 4})");
+    scene.camera_track = parse_scene(R"({"camera": {"track": [
+        {"time": 0, "position": [0, 3, 40], "look_at": [0, 4, -10]},
+        {"time": 1, "position": [5, 4, 30], "look_at": [0, 4, -10]}]}})",
+                                     "track")
+                             .camera_track;
+    SceneDesc sunset = lit_scene(R"({"samples": 4})");
+    sunset.sun_track = {SunKey{0, glm::normalize(glm::dvec3(-0.5, 0.6, 0.4))},
+                        SunKey{1, glm::normalize(glm::dvec3(0.6, 0.5, -0.3))}};
+    auto paint_all = [&] {
+        std::vector<Frame> frames;
+        const Shot shot = build_shot(scene);
+        for (int f : {1, 13, 24})
+            frames.push_back(paint_frame(shot, view_at(shot.scene, frame_time(f, 24)),
+                                         scene_frame_settings(shot.scene)));
+        const Shot sun_shot = build_shot(sunset);
+        frames.push_back(paint_frame(sun_shot, view_at(sun_shot.scene, 0.5),
+                                     scene_frame_settings(sun_shot.scene)));
+        return frames;
+    };
+    const std::vector<Frame> pinned = paint_all();
+    set_ray_device_config("isa=sse2");
+    const std::vector<Frame> sse2 = paint_all();
+    int moved = 0;  // what the pin prevents, recorded: values that differ with the widest set
+    set_ray_device_config("");
+    const std::vector<Frame> widest = paint_all();
+    set_ray_device_config(kPortableRayDevice);
+    for (size_t i = 0; i < pinned.size(); ++i) {
+        EXPECT_TRUE(same_pixels(pinned[i], sse2[i])) << i;
+        for (size_t k = 0; k < pinned[i].rgba.size(); ++k)
+            moved += pinned[i].rgba[k] != widest[i].rgba[k];
+    }
+    RecordProperty("values_that_differ_with_embree_widest_isa", moved);
 }
 
 TEST(DepthOrder, BackToFrontByDistanceFromTheEyeWithTiesByIndex) {
