@@ -400,31 +400,6 @@ int32_t find_material(const SceneDesc& s, const std::string& name, const std::st
     return -1;
 }
 
-// A list of objects under `key` of `parent` (absent: nothing): each element gets a reader at
-// its own pointer, checked against the key table `read` visits, unknown keys reported.
-template <class Fn>
-void read_list(const json& parent, const char* key, const std::string& ptr,
-               std::vector<Problem>& problems, std::set<std::string>& plain, Fn&& read) {
-    auto it = parent.find(key);
-    if (it == parent.end()) return;
-    if (!it->is_array()) {
-        problems.push_back({ptr, "expected a list, got " + describe(*it)});
-        return;
-    }
-    for (size_t i = 0; i < it->size(); ++i) {
-        const std::string elem = ptr + "/" + std::to_string(i);
-        const json& j = (*it)[i];
-        if (!j.is_object()) {
-            problems.push_back({elem, "expected an object, got " + describe(j)});
-            continue;
-        }
-        Reader r(j, problems, plain, elem);
-        r.check_ranges();
-        read(j, r, elem);
-        r.finish();
-    }
-}
-
 // Materials, terrain, water and rocks: the landscape under the trees (IV.7).
 void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
                      std::vector<Problem>& problems, std::set<std::string>& plain) {

@@ -12,6 +12,7 @@
 #include "pipeline/contact_sheet.h"
 #include "pipeline/error.h"
 #include "pipeline/family.h"
+#include "pipeline/graftal_io.h"
 #include "pipeline/image_io.h"
 #include "pipeline/json_params.h"
 #include "pipeline/limits.h"
@@ -184,9 +185,10 @@ int run_family(const FamilyCommand& cmd) {
 
 int run_presets(const PresetsCommand& cmd) {
     if (!cmd.reference.empty()) {
-        std::cout << (cmd.reference == "trees"     ? tree_params_reference()
-                      : cmd.reference == "shaders" ? stroke_shader_reference()
-                                                   : scene_reference());
+        std::cout << (cmd.reference == "trees"      ? tree_params_reference()
+                      : cmd.reference == "shaders"  ? stroke_shader_reference()
+                      : cmd.reference == "graftals" ? graftal_reference()
+                                                    : scene_reference());
         return 0;
     }
     for (const auto& p : list_tree_presets())
@@ -196,6 +198,8 @@ int run_presets(const PresetsCommand& cmd) {
                     load_shader_preset(name).description.c_str());
     for (const auto& name : preset_names("palettes"))
         std::printf("palette  %-18s %s\n", name.c_str(), load_palette(name).description.c_str());
+    for (const auto& name : preset_names("graftals"))
+        std::printf("graftal  %-18s %s\n", name.c_str(), load_graftal(name).description.c_str());
     for (const auto& name : preset_names("scenes")) {
         auto file = resolve_preset("scenes", name, "presets");
         std::printf("scene    %-18s %s\n", name.c_str(), load_scene(file).description.c_str());
