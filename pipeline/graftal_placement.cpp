@@ -1,0 +1,109 @@
+// The difference-image placement of graftals: Pascal dots subtracted from a desire image.
+#include "pipeline/graftal_placement.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <queue>
+
+#include "generators/rng.h"
+
+namespace pleinair {
+
+namespace {
+
+// Subtracts strength x dot centred on (cx, cy), clipped to the image; desire never below 0.
+void subtract_dot(DesireImage& img, const std::vector<float>& dot, int row, int cx, int cy,
+                  float strength) {
+    const int r = row / 2, n = row + 1;
+    for (int j = 0; j < n; ++j) {
+        const int y = cy - r + j;
+        if (y < 0 || y >= img.height) continue;
+        for (int i = 0; i < n; ++i) {
+            const int x = cx - r + i;
+            if (x < 0 || x >= img.width) continue;
+            float& d = img.desire[static_cast<size_t>(y) * img.width + x];
+            d = std::max(0.0f, d - strength * dot[static_cast<size_t>(j) * n + i]);
+        }
+    }
+}
+
+bool valid(const DesireImage& img) {
+    return img.width > 0 && img.height > 0 &&
+           img.desire.size() == static_cast<size_t>(img.width) * img.height &&
+           (img.id.empty() || img.id.size() == img.desire.size());
+}
+
+}  // namespace
+
+std::vector<float> pascal_dot(int row) {
+    row = std::clamp(row, 0, 60);  // C(60, 30) ~ 1.2e17: still exact enough in double
+    std::vector<double> c(static_cast<size_t>(row) + 1, 1.0);
+    for (int k = 1; k < row; ++k) c[k] = c[k - 1] * (row - k + 1) / k;
+    const double peak = c[static_cast<size_t>(row / 2)];
+    const size_t n = c.size();
+    std::vector<float> dot(n * n);
+    for (size_t j = 0; j < n; ++j)
+        for (size_t i = 0; i < n; ++i)
+            dot[j * n + i] = static_cast<float>((c[j] / peak) * (c[i] / peak));
+    return dot;
+}
+
+std::vector<uint32_t> place_candidates(DesireImage& img,
+                                       const std::vector<GraftalCandidate>& candidates,
+                                       const DifferencePlacement& p) {
+    std::vector<uint32_t> placed;
+    if (!valid(img)) return placed;
+    // The same order in every frame: by a hash of each candidate's key, ties by the key.
+    std::vector<uint32_t> order(candidates.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::vector<uint64_t> rank(candidates.size());
+    for (size_t i = 0; i < candidates.size(); ++i) rank[i] = mix64(candidates[i].key);
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+        return rank[a] != rank[b] ? rank[a] < rank[b] : candidates[a].key < candidates[b].key;
+    });
+    const std::vector<float> dot = pascal_dot(p.dot_row);
+    const int row = std::clamp(p.dot_row, 0, 60);
+    for (uint32_t c : order) {
+        if (placed.size() >= p.max_count) break;
+        const glm::vec2 px = candidates[c].pixel;
+        if (!(px.x >= 0 && px.y >= 0 && px.x < img.width && px.y < img.height)) continue;
+        const int x = static_cast<int>(px.x), y = static_cast<int>(px.y);
+        const size_t at = static_cast<size_t>(y) * img.width + x;
+        if (!img.id.empty() && img.id[at] != candidates[c].object) continue;  // hidden there
+        if (!(img.desire[at] >= p.threshold)) continue;
+        placed.push_back(c);
+        subtract_dot(img, dot, row, x, y, p.strength);
+    }
+    return placed;
+}
+
+std::vector<glm::ivec2> fill_by_difference(DesireImage& img, const DifferencePlacement& p) {
+    std::vector<glm::ivec2> placed;
+    if (!valid(img)) return placed;
+    const std::vector<float> dot = pascal_dot(p.dot_row);
+    const int row = std::clamp(p.dot_row, 0, 60);
+    // A max-heap of (desire, -index) with lazy updates: an entry whose desire has since been
+    // lowered goes back in with its current value. Ties go to the lower index, so the result
+    // is one function of the image.
+    using Entry = std::pair<float, int64_t>;
+    std::priority_queue<Entry> heap;
+    for (size_t i = 0; i < img.desire.size(); ++i)
+        if (img.desire[i] >= p.threshold) heap.push({img.desire[i], -static_cast<int64_t>(i)});
+    while (!heap.empty() && placed.size() < p.max_count) {
+        const auto [value, neg] = heap.top();
+        heap.pop();
+        const size_t i = static_cast<size_t>(-neg);
+        const float now = img.desire[i];
+        if (now != value) {
+            if (now >= p.threshold) heap.push({now, neg});
+            continue;
+        }
+        const int x = static_cast<int>(i % img.width), y = static_cast<int>(i / img.width);
+        placed.push_back({x, y});
+        subtract_dot(img, dot, row, x, y, p.strength);
+    }
+    return placed;
+}
+
+}  // namespace pleinair
