@@ -41,6 +41,7 @@ enum class Purpose : uint64_t {
     kScatter = 12,    // tree placement, per group
     kLeafLabel = 13,  // a leaf's label, per (emitter, step)
     kImported = 14,   // an imported particle's label and random normal, per (file, id)
+    kGraftal = 15,    // graftal sites and tufts, per (object, site, use)
 };
 
 // PCG32 (O'Neill 2014): small state, good statistics, and fully specified, so every platform

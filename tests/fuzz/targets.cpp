@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "pipeline/error.h"
+#include "pipeline/graftal_io.h"
+#include "pipeline/graftal_lod.h"
 #include "pipeline/json_params.h"
 #include "pipeline/particle_files.h"
 #include "pipeline/scene.h"
@@ -142,6 +144,41 @@ int particle_file(const uint8_t* data, size_t size) {
             if (!p.color.empty() && !std::isfinite(p.color[i].x + p.color[i].y + p.color[i].z))
                 finding("particle_file", "a non-finite colour");
         }
+    });
+    return 0;
+}
+
+int graftal(const uint8_t* data, size_t size) {
+    refused_cleanly("graftal", [&] {
+        const GraftalDesc g = parse_graftal(text(data, size), "fuzz.json");
+        // Accepted: every primitive indexes its example's vertices, strokes have a width per
+        // vertex, and the levels rise from 0.
+        if (g.examples.empty() || g.tuft.levels.empty()) finding("graftal", "nothing to draw");
+        for (const GraftalExample& e : g.examples)
+            for (const GraftalPrimitive& p : e.primitives) {
+                for (uint32_t v : p.vertices)
+                    if (v >= e.vertices.size()) finding("graftal", "a vertex index past the end");
+                if (p.type == PrimitiveType::kStroke && p.widths.size() != p.vertices.size())
+                    finding("graftal", "a stroke without a width per vertex");
+            }
+        if (g.tuft.levels[0].lambda != 0) finding("graftal", "a first level above 0");
+        for (size_t i = 1; i < g.tuft.levels.size(); ++i)
+            if (!(g.tuft.levels[i].lambda > g.tuft.levels[i - 1].lambda))
+                finding("graftal", "levels that do not rise");
+        // Its tuft replayed over a second of a λ that sweeps every level: levels in range, τ in
+        // [0, 1], the same state whether replayed or stepped.
+        const float top = g.tuft.levels.back().lambda + 1.0f;
+        auto lambda = [top](int f) { return top * static_cast<float>(f % 13) / 12.0f; };
+        TuftState s;
+        for (int f = 0; f < 24; ++f) {
+            step_tuft(s, g.tuft, tuft_level(g.tuft.levels, lambda(f)), 1.0 / 24);
+            if (s.level < 0 || s.level >= static_cast<int>(g.tuft.levels.size()))
+                finding("graftal", "a tuft level out of range");
+            for (float t : s.tau)
+                if (!(t >= 0.0f && t <= 1.0f)) finding("graftal", "a τ outside [0, 1]");
+        }
+        if (replay_tuft(g.tuft, lambda, 23, 24).tau != s.tau)
+            finding("graftal", "a replayed tuft that differs from the stepped one");
     });
     return 0;
 }

@@ -17,6 +17,7 @@ int palette(const uint8_t* data, size_t size);
 int scene(const uint8_t* data, size_t size);      // camera and sun tracks included
 int set_value(const uint8_t* data, size_t size);  // --set POINTER=VALUE lines on a scene
 int particle_file(const uint8_t* data, size_t size);
+int graftal(const uint8_t* data, size_t size);  // a graftal description, then its tuft replayed
 
 struct Target {
     const char* name;
@@ -26,6 +27,7 @@ inline constexpr Target kTargets[] = {
     {"tree_preset", tree_preset}, {"shader_preset", shader_preset},
     {"palette", palette},         {"scene", scene},
     {"set_value", set_value},     {"particle_file", particle_file},
+    {"graftal", graftal},
 };
 
 }  // namespace pleinair::fuzz
