@@ -150,16 +150,21 @@ inline void sincos(double x, double& s, double& c) {
     }
 }
 
+// sin and cos alone evaluate only the kernel their quadrant needs (the same bits as sincos).
 inline double sin(double x) {
-    double s, c;
-    sincos(x, s, c);
-    return s;
+    if (!std::isfinite(x)) return detail::kNaN;
+    int q;
+    const double r = detail::reduce_half_pi(x, q);
+    const double v = q & 1 ? detail::cos_kernel(r) : detail::sin_kernel(r);
+    return q & 2 ? -v : v;
 }
 
 inline double cos(double x) {
-    double s, c;
-    sincos(x, s, c);
-    return c;
+    if (!std::isfinite(x)) return detail::kNaN;
+    int q;
+    const double r = detail::reduce_half_pi(x, q);
+    const double v = q & 1 ? detail::sin_kernel(r) : detail::cos_kernel(r);
+    return (q == 1 || q == 2) ? -v : v;
 }
 
 inline double tan(double x) {
