@@ -7,7 +7,7 @@ SAN_BUILD ?= build-sanitize
 JOBS ?= $(shell nproc)
 DEPS := build-essential cmake ninja-build libopenmesh-dev libglm-dev libopenimageio-dev \
         openimageio-tools libembree-dev libtbb-dev nlohmann-json3-dev libcli11-dev \
-        libgtest-dev libbenchmark-dev libhwy-dev ffmpeg
+        libgtest-dev libbenchmark-dev libhwy-dev libcairo2-dev pkg-config ffmpeg
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 FUZZ_BUILD ?= build-fuzz

@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "pipeline/camera_track.h"
+#include "pipeline/graftal_stage.h"
 #include "pipeline/lod.h"
 #include "pipeline/paint.h"
 #include "shading/color.h"
@@ -146,6 +147,9 @@ std::vector<float> presences(const Shot& shot, const FrameView& view, const Rend
     });
     std::vector<float> all;
     for (auto& v : per_item) all.insert(all.end(), v.begin(), v.end());
+    // Graftals: their τ, a level growing in or fading out (graftal_stage.h).
+    const std::vector<float> g = graftal_presences(shot, view);
+    all.insert(all.end(), g.begin(), g.end());
     return all;
 }
 
@@ -156,6 +160,8 @@ std::vector<uint64_t> particle_keys(const Shot& shot) {
         for_each_particle(shot, i, [&](SpriteKind kind, size_t j, const RayOrigin&) {
             keys.push_back(particle_key(static_cast<uint32_t>(i), kind, static_cast<uint32_t>(j)));
         });
+    const std::vector<uint64_t> g = graftal_keys(shot);
+    keys.insert(keys.end(), g.begin(), g.end());
     return keys;
 }
 

@@ -373,8 +373,38 @@ struct TilePainter {
     void samples(uint32_t idx, const SpriteSpan& r, const SpriteMaterial& m,
                  const StrokeShaderParams& pf, const StrokeRamp* ramp, const ShadowGrid* grid);
 
+    // A graftal's patch (graftal_draw.h): each pixel's 8-bit premultiplied sRGB back to linear
+    // light, composited like a stroke's fragment.
+    void paint_patch(uint32_t idx) {
+        const Sprite& sp = set.sprites[idx];
+        const GraftalPatch& p = set.patches[static_cast<size_t>(sp.patch)];
+        static const std::array<float, 256> lin = [] {
+            std::array<float, 256> t{};
+            for (int i = 0; i < 256; ++i) t[i] = srgb_to_linear(static_cast<float>(i) / 255.0f);
+            return t;
+        }();
+        const int xa = std::max(layer.x0, p.x0), xb = std::min(layer.x0 + layer.w, p.x0 + p.width);
+        const int ya = std::max(layer.y0, p.y0), yb = std::min(layer.y0 + layer.h, p.y0 + p.height);
+        for (int y = ya; y < yb; ++y)
+            for (int x = xa; x < xb; ++x) {
+                if (!layer.open(x, y)) continue;
+                const uint32_t px = p.pixels[static_cast<size_t>(y - p.y0) * p.width + (x - p.x0)];
+                const uint32_t a8 = px >> 24;
+                if (a8 == 0) continue;
+                ++fragments;
+                // Unpremultiplied to the nearest 8-bit level, as the drawing program meant it.
+                auto channel = [&](int shift) {
+                    const uint32_t c8 = (px >> shift) & 0xffu;
+                    return lin[std::min<uint32_t>(255u, (c8 * 255u + a8 / 2) / a8)];
+                };
+                const float a = static_cast<float>(a8) * (1.0f / 255.0f) * sp.fade;
+                composite(x, y, Color(channel(16), channel(8), channel(0)), a, idx);
+            }
+    }
+
     void paint(uint32_t idx) {
         const Sprite& sp = set.sprites[idx];
+        if (sp.kind == SpriteKind::kGraftal) return paint_patch(idx);
         const SpriteMaterial& m = shot.materials[sp.material];
         const SpriteSpan r =
             sprite_span(sp, layer.x0, layer.y0, layer.x0 + layer.w, layer.y0 + layer.h);

@@ -125,6 +125,7 @@ Frame paint_contact_sheet(const Family& family, const std::vector<Tree>& trees,
         for (const FrameReport& rep : reports) {
             report->leaf_sprites += rep.leaf_sprites;
             report->bark_sprites += rep.bark_sprites;
+            report->graftal_sprites += rep.graftal_sprites;
             report->fragments += rep.fragments;
             report->culled += rep.culled;
         }

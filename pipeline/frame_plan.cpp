@@ -75,6 +75,11 @@ FramePlan plan_frame(const Shot& shot, const FrameSettings& settings) {
             ? "the camera's distance circles: leaves fade outside in, survivors grow, twigs' "
               "bark cross-fades to the low-detail model"
             : "render/level_of_detail is false: every tree at full detail");
+    plan.graftals = !shot.graftals.empty();
+    add("graftals", plan.graftals,
+        plan.graftals ? "some family or material is drawn in a graftal style: tufts' levels "
+                        "from λ, graftals drawn into patches and composited with the strokes"
+                      : "every family and material is painted with strokes");
     plan.bare_blend = settings.bare_blend;
     plan.trace = settings.trace;
     plan.noise_reseed = settings.noise_reseed;

@@ -112,9 +112,10 @@ struct GraftalDesc {
     float preferred_size_px = 25;  // the screen size at which σ = 1
     float length = 1;              // world length of a graftal of canonical length 1
     GraftalPlacement placement = GraftalPlacement::kLeafParticles;
-    int every_k = 4;              // kEveryKthFace
+    int every_k = 4;              // kEveryKthFace and kLeafParticles
     float per_area = 1;           // kDensity: graftals per square world unit
     bool alpha_from_rho = false;  // file 001: opacity = ρ, so graftals fade away from silhouettes
+    float light = 0;              // how much the sun shades them (graftal_io.cpp)
     std::vector<GraftalExample> examples;
     GraftalVariation variation;
     TuftRules tuft;

@@ -33,6 +33,21 @@ glm::vec3 unit_or_up(const glm::dvec3& v) {
 
 }  // namespace
 
+std::vector<GraftalSite> leaf_sites(const GraftalDesc& desc, const std::vector<glm::dvec3>& world,
+                                    const std::vector<glm::vec3>& normals, uint64_t seed,
+                                    uint32_t object) {
+    std::vector<GraftalSite> out;
+    const uint32_t k = static_cast<uint32_t>(std::max(desc.every_k, 1));
+    for (size_t j = 0; j < world.size() && j < normals.size(); ++j) {
+        if (k > 1) {
+            Rng rng = make_rng(seed, Purpose::kGraftal, object, j, 3);
+            if (next_u32(rng) % k != 0) continue;
+        }
+        out.push_back({world[j], unit_or_up(glm::dvec3(normals[j])), object, j});
+    }
+    return out;
+}
+
 std::vector<GraftalSite> mesh_sites(const GraftalDesc& desc, const QuadMesh& mesh, uint64_t seed,
                                     uint32_t object) {
     std::vector<GraftalSite> out;

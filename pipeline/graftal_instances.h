@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <glm/vec3.hpp>
+#include <memory>
 #include <vector>
 
 #include "generators/quad_mesh.h"
@@ -28,6 +29,13 @@ struct GraftalSite {
 // run), or points at a density per unit area (each face's count and points by the seed).
 // kLeafParticles and kDifference take their sites elsewhere: an empty list here.
 std::vector<GraftalSite> mesh_sites(const GraftalDesc& desc, const QuadMesh& mesh, uint64_t seed,
+                                    uint32_t object);
+
+// Sites at leaf particles (world positions and unit normals, keyed by particle index): every
+// one, or with every_k > 1 one in k chosen per particle by the seed, so crowns of thousands of
+// leaves carry a few hundred tufts.
+std::vector<GraftalSite> leaf_sites(const GraftalDesc& desc, const std::vector<glm::dvec3>& world,
+                                    const std::vector<glm::vec3>& normals, uint64_t seed,
                                     uint32_t object);
 
 struct GraftalInstance {
@@ -52,5 +60,18 @@ struct GraftalInstance {
 // a level comes in as a ripple, not all at once (file 000 §3, the truffula tops).
 std::vector<GraftalInstance> grow_tufts(const GraftalDesc& desc,
                                         const std::vector<GraftalSite>& sites, uint64_t seed);
+
+}  // namespace pleinair
+
+namespace pleinair {
+
+// One surface's graftals in a shot (a tree's crown, a material's part of the terrain or a
+// rock): its description, tufts and their graftals, grouped by tuft.
+struct ShotGraftals {
+    std::shared_ptr<const GraftalDesc> desc;
+    std::vector<GraftalSite> sites;
+    std::vector<GraftalInstance> instances;  // by tuft, in site order
+    std::vector<uint32_t> first;             // per site, its first instance; sites + 1 entries
+};
 
 }  // namespace pleinair

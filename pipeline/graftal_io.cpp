@@ -57,11 +57,16 @@ void visit_graftal(G& g, V& v) {
            "World length of a graftal whose canonical extent is 1.");
     v.boolean("alpha_from_rho", g.alpha_from_rho,
               "Opacity = ρ (file 001): graftals fade away from silhouettes.");
+    v.real("light", g.light, {0, 0.9}, "",
+           "How much the sun shades a graftal: colours x (1 - light + light x max(0, n.l)), so "
+           "the side away from the sun darkens but never goes black; 0 draws flat colour.");
     v.object("placement", "Where graftals are placed (file 000 §2.2.2, file 004)", [&] {
         v.choice("at", g.placement, kPlacements,
                  "At leaf particles, mesh vertices, faces, every k-th face, at a density per "
                  "area, or by the difference image each frame.");
-        v.integer("every_k", g.every_k, {1, 1000000}, "For \"every_kth_face\": one face in k.");
+        v.integer("every_k", g.every_k, {1, 1000000},
+                  "For \"every_kth_face\": one face in k; for \"leaf_particles\": one particle "
+                  "in k (a crown has thousands).");
         v.real("per_area", g.per_area, {1e-6, 1e6}, "1/world unit²",
                "For \"density\": graftals per square world unit.");
     });

@@ -141,8 +141,17 @@ TuftState replay_tuft(const TuftRules& rules, const std::function<float(int)>& l
                       double fps) {
     TuftState s;
     const double dt = fps > 0 ? 1.0 / fps : 0.0;
+    std::vector<int> chosen(static_cast<size_t>(std::max(frame + 1, 0)));
     for (int f = 0; f <= frame; ++f)
-        step_tuft(s, rules, tuft_level(rules.levels, lambda_at(f)), dt);
+        chosen[static_cast<size_t>(f)] = tuft_level(rules.levels, lambda_at(f));
+    // Most tufts choose one level all along (far ones, or a still): stepping them would end
+    // where the first frame starts, so start there (the same state, member for member).
+    if (!chosen.empty() &&
+        std::all_of(chosen.begin(), chosen.end(), [&](int c) { return c == chosen[0]; })) {
+        step_tuft(s, rules, chosen[0], dt);
+        return s;
+    }
+    for (int c : chosen) step_tuft(s, rules, c, dt);
     return s;
 }
 

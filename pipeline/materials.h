@@ -12,7 +12,9 @@ namespace pleinair {
 
 // What a sprite is: a leaf, a bark stroke on a limb, or a stroke of a surface (grass, earth,
 // water, rock). Stated by whoever makes the sprite, never inferred from its other fields.
-enum class SpriteKind : uint8_t { kLeaf, kBark, kSurface };
+// kGraftal: a graftal's patch drawn by the graftals stage (graftal_stage.h), not a stroke; it
+// has no material.
+enum class SpriteKind : uint8_t { kLeaf, kBark, kSurface, kGraftal };
 
 // A stroke shader ready to paint: its parameters, palette and edge table (the shader's own
 // stroke_fullness, tabulated once).

@@ -9,6 +9,7 @@
 
 #include "pipeline/bin.h"
 #include "pipeline/composite.h"
+#include "pipeline/graftal_stage.h"
 #include "pipeline/sprites.h"
 
 namespace pleinair {
@@ -148,6 +149,27 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
              (sprites.shadow_rays ? ", " + std::to_string(sprites.shadow_rays) + " shadow rays"
                                   : "")});
 
+    if (plan.graftals) {
+        // After the strokes' sprites, so their indices (and the shadow grids') stay as they are.
+        PassTimer tg;
+        const GraftalStageReport g = add_graftal_sprites(shot, view, sprites, settings.lod_view);
+        rep.graftal_sprites = sprites.graftal;
+        std::string levels;
+        for (size_t l = 0; l < g.at_level.size(); ++l)
+            levels += (l ? ", " : "") + std::to_string(g.at_level[l]);
+        rep.passes.push_back({"graftals", true,
+                              "tufts' levels from λ" +
+                                  (view.on_track ? ", filtered over " + std::to_string(g.replayed) +
+                                                       " frames of the track replayed"
+                                                 : std::string()) +
+                                  "; graftals drawn by Cairo into patches (" +
+                                  std::to_string(int(g.draw_ms + 0.5)) + " ms of it)",
+                              tg.ms(),
+                              std::to_string(g.tufts) + " tufts (per level: " + levels + "), " +
+                                  std::to_string(g.drawn) + " graftals drawn (" +
+                                  std::to_string(g.growing) + " growing or fading), " +
+                                  std::to_string(g.pixels) + " patch pixels"});
+    }
     t = PassTimer();
     const std::vector<uint32_t> order = depth_order(sprites.sprites);
     rep.passes.push_back({"sort", true, "depth order, ties by sprite", t.ms(), ""});

@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "generators/rng.h"
+#include "pipeline/graftal_io.h"
 #include "pipeline/json_visitors.h"
 #include "pipeline/limits.h"
 #include "pipeline/presets.h"
@@ -388,6 +389,19 @@ std::string near_scene(const std::string& name, const std::string& source) {
     return (std::filesystem::path(source).parent_path() / p).string();
 }
 
+// A family's or material's style: "strokes" (null), or a graftal description by name or file.
+std::shared_ptr<const GraftalDesc> load_style(const std::string& style, const std::string& source,
+                                              const std::string& ptr,
+                                              std::vector<Problem>& problems) {
+    if (style == "strokes") return nullptr;
+    std::shared_ptr<const GraftalDesc> out;
+    load_into(problems, source, ptr, [&] {
+        out = std::make_shared<const GraftalDesc>(
+            load_graftal(near_scene(style, source), source, ptr));
+    });
+    return out;
+}
+
 // Index of the material called `name`, or a problem at `ptr` naming those there are.
 int32_t find_material(const SceneDesc& s, const std::string& name, const std::string& ptr,
                       std::vector<Problem>& problems) {
@@ -415,13 +429,15 @@ void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
                     continue;
                 }
                 std::string shader, palette;
+                Material mat;
                 Reader r(m, problems, plain, ptr);
                 r.check_ranges();
                 r.text("shader", shader, "");
                 r.text("palette", palette, "");
+                r.text("style", mat.style, "");
                 r.finish();
-                Material mat;
                 mat.name = name;
+                mat.graftal = load_style(mat.style, source, ptr + "/style", problems);
                 if (shader.empty()) {
                     problems.push_back({ptr + "/shader", "missing: a shader preset name or file"});
                     s.materials.push_back(std::move(mat));
@@ -680,7 +696,9 @@ void parse_families(const json& doc, const std::string& source, SceneDesc& s,
             r.text("bark_shader", bark_shader, "");
             r.text("leaf_palette", leaf_palette, "");
             r.text("bark_palette", bark_palette, "");
+            r.text("style", family.style, "");
             r.finish();
+            family.graftal = load_style(family.style, source, ptr + "/style", problems);
             if (family.preset.empty()) {
                 problems.push_back({ptr + "/preset", "missing: a tree preset name or file"});
                 continue;

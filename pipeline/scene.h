@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "generators/tree_params.h"
 #include "pipeline/camera.h"
 #include "pipeline/camera_track.h"
+#include "pipeline/graftal.h"
 #include "pipeline/particle_files.h"
 #include "pipeline/settings.h"
 #include "shading/color.h"
@@ -48,6 +50,10 @@ struct Material {
     StrokeShaderParams shader;
     SurfaceShaderParams surface;
     Palette palette;
+    // The material's style: null paints its strokes; a graftal description (file 000) draws
+    // tufts on its surfaces instead, over the underpainting's flat colour.
+    std::shared_ptr<const GraftalDesc> graftal;
+    std::string style = "strokes";  // as written in the scene
 };
 
 // A disc of the terrain painted with its own material (a meadow, a sandy path, a patch of
@@ -107,6 +113,10 @@ struct Family {
     TreeParams params;
     StrokeShaderParams leaf_shader, bark_shader;
     Palette leaf_palette, bark_palette;
+    // The crowns' style: null paints leaf strokes; a graftal description draws its graftals at
+    // the leaf particles instead (bark stays strokes).
+    std::shared_ptr<const GraftalDesc> graftal;
+    std::string style = "strokes";
 };
 
 struct PlacedTree {

@@ -5,10 +5,12 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
+#include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <limits>
 
+#include "pipeline/graftal_stage.h"
 #include "shading/portable_math.h"
 
 namespace pleinair {
@@ -226,6 +228,20 @@ Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> t
     for (const auto& r : shot.scene.rocks)
         max_displacement = std::max(max_displacement, r.strokes.displacement_height);
     shot.surface_lift = 2.0f * static_cast<float>(max_displacement) + 0.01f;
+    if (std::any_of(shot.scene.families.begin(), shot.scene.families.end(),
+                    [](const Family& f) { return f.graftal != nullptr; }) ||
+        std::any_of(shot.scene.materials.begin(), shot.scene.materials.end(),
+                    [](const Material& m) { return m.graftal != nullptr; })) {
+        PassTimer timer;
+        shot.graftals = build_graftals(shot);
+        size_t tufts = 0, graftals = 0;
+        for (const ShotGraftals& g : shot.graftals)
+            tufts += g.sites.size(), graftals += g.instances.size();
+        shot.passes.push_back(
+            {"graftals", true, "tufts placed on the graftal-styled crowns and surfaces", timer.ms(),
+             std::to_string(tufts) + " tufts of " + std::to_string(graftals) + " graftals in " +
+                 std::to_string(shot.graftals.size()) + " groups"});
+    }
 
     const ShotPlan& plan = shot.plan;
     const bool still_sun = plan.shadows && !plan.sun_moves;

@@ -9,6 +9,7 @@
 
 #include "generators/bark.h"
 #include "generators/tree.h"
+#include "pipeline/graftal_instances.h"
 #include "pipeline/landscape.h"
 #include "pipeline/materials.h"
 #include "pipeline/rays.h"
@@ -111,6 +112,11 @@ struct Shot {
     // plan.sun_light: per item (trees, then surface chunks), per particle in the order
     // for_each_particle visits them, the light reaching it.
     std::vector<std::vector<float>> sun_light;
+
+    // The graftal-styled families' crowns and materials' surfaces (graftal_stage.h); their
+    // leaf and surface strokes are not painted. Graftal sprites' items count on from
+    // item_count().
+    std::vector<ShotGraftals> graftals;
 
     std::vector<PassReport> passes;  // what the build did, for --explain
 

@@ -224,6 +224,18 @@ bool apply_lod(const SpriteContext& c, size_t item, size_t j, SpriteInput& in, R
     return true;
 }
 
+// Leaves of a graftal-styled family and strokes of a graftal-styled material: the graftals
+// stage draws those crowns and surfaces (graftal_stage.h).
+bool drawn_as_graftals(const Shot& shot, size_t item, SpriteKind kind, size_t j) {
+    const std::vector<BuiltTree>& trees = *shot.trees;
+    if (kind == SpriteKind::kLeaf)
+        return shot.scene.families[trees[item].family].graftal != nullptr;
+    if (kind == SpriteKind::kSurface)
+        return shot.scene.materials[shot.land->chunks[item - trees.size()].material[j]].graftal !=
+               nullptr;
+    return false;
+}
+
 // Counters summed over threads: one shared atomic, bumped for every ray, bounces between cores.
 struct Counters {
     tbb::combinable<uint64_t> shadow_rays{[] { return uint64_t{0}; }};
@@ -372,6 +384,7 @@ SpriteSet make_sprites(const SpriteStageInput& input) {
         size_t k = 0;  // the particle's index in the shot's light cache
         for_each_particle(shot, i, [&](SpriteKind kind, size_t j, const RayOrigin& origin) {
             const size_t slot = k++;
+            if (drawn_as_graftals(shot, i, kind, j)) return;
             // Cheapest test first: faded out, on screen, then seen past the surfaces, then lit.
             MaterialId mat;
             // Where it is painted, which the level of detail may move; its light stays the

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "pipeline/frame_plan.h"
+#include "pipeline/graftal_draw.h"
 #include "pipeline/lod.h"
 #include "pipeline/materials.h"
 #include "shading/stroke_shader.h"
@@ -33,7 +34,8 @@ struct Sprite {
     // Fading with distance (IV.6, IV.7): 1 whole, 0 gone. A fade raises the stroke's noise
     // threshold (composite.cpp), so it breaks into dabs and vanishes with crisp edges.
     float fade = 1;
-    int32_t grid = -1;  // its shadow grid, with shadows per fragment
+    int32_t grid = -1;   // its shadow grid, with shadows per fragment
+    int32_t patch = -1;  // a graftal's patch in SpriteSet::patches
     MaterialId material;
     uint32_t object_id = 0;
     SpriteKind kind = SpriteKind::kLeaf;
@@ -60,7 +62,8 @@ float stroke_screen_px(const Camera& cam, const RenderSettings& r, double world,
 struct SpriteSet {
     std::vector<Sprite> sprites;  // per tree (bark, then leaves), then per surface chunk
     std::vector<ShadowGrid> grids;
-    uint64_t leaf = 0, bark = 0, surface = 0;
+    std::vector<GraftalPatch> patches;  // the graftals stage's, one per kGraftal sprite
+    uint64_t leaf = 0, bark = 0, surface = 0, graftal = 0;
     uint64_t culled = 0;  // behind the camera, off screen, too faint, faded out, or hidden
     uint64_t faded = 0;   // of those, faded out by the level of detail
     uint64_t hidden = 0;  // of those, behind an opaque surface

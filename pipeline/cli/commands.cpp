@@ -128,6 +128,10 @@ int paint_sheet(const FamilyCommand& cmd, const TreeParams& params, const std::s
     family.bark_shader = bark.params;
     family.leaf_palette = shader_palette(load_palette(leaves.palette), leaves.params);
     family.bark_palette = shader_palette(load_palette(bark.palette), bark.params);
+    if (cmd.style != "strokes") {
+        family.style = cmd.style;
+        family.graftal = std::make_shared<const GraftalDesc>(load_graftal(cmd.style, "--style"));
+    }
     std::vector<Tree> trees = generate_family(params, cmd.seed, cmd.count);
     auto ms = [](Clock::time_point a) {
         return std::chrono::duration<double, std::milli>(Clock::now() - a).count();
@@ -150,7 +154,8 @@ int paint_sheet(const FamilyCommand& cmd, const TreeParams& params, const std::s
         "painted %u %s trees into %s (%dx%d) in %.2f s (generate %.0f ms, paint %.0f ms, "
         "write %.0f ms): %llu sprites, %llu fragments\n",
         cmd.count, name.c_str(), cmd.out.c_str(), o.width, o.height, ms(t0) / 1000.0, gen_ms,
-        paint_ms, write_ms, static_cast<unsigned long long>(rep.leaf_sprites + rep.bark_sprites),
+        paint_ms, write_ms,
+        static_cast<unsigned long long>(rep.leaf_sprites + rep.bark_sprites + rep.graftal_sprites),
         static_cast<unsigned long long>(rep.fragments));
     return 0;
 }
@@ -174,6 +179,11 @@ int run_family(const FamilyCommand& cmd) {
         save_preset(cmd.save_preset, params);
         return paint_sheet(cmd, params, name);
     }
+    if (cmd.style != "strokes")
+        throw InputError("--style", "",
+                         "\"" + cmd.style +
+                             "\": a style is for a painted contact sheet (-o NAME.png); a folder "
+                             "of members holds meshes and particles, which have none");
     check_out_dir(cmd.out, "family.json");
     save_preset(cmd.save_preset, params);
     if (cmd.out.empty()) return 0;
@@ -192,17 +202,17 @@ int run_presets(const PresetsCommand& cmd) {
         return 0;
     }
     for (const auto& p : list_tree_presets())
-        std::printf("tree     %-18s %s\n", p.name.c_str(), p.description.c_str());
+        std::printf("tree     %-22s %s\n", p.name.c_str(), p.description.c_str());
     for (const auto& name : preset_names("shaders"))
-        std::printf("shader   %-18s %s\n", name.c_str(),
+        std::printf("shader   %-22s %s\n", name.c_str(),
                     load_shader_preset(name).description.c_str());
     for (const auto& name : preset_names("palettes"))
-        std::printf("palette  %-18s %s\n", name.c_str(), load_palette(name).description.c_str());
+        std::printf("palette  %-22s %s\n", name.c_str(), load_palette(name).description.c_str());
     for (const auto& name : preset_names("graftals"))
-        std::printf("graftal  %-18s %s\n", name.c_str(), load_graftal(name).description.c_str());
+        std::printf("graftal  %-22s %s\n", name.c_str(), load_graftal(name).description.c_str());
     for (const auto& name : preset_names("scenes")) {
         auto file = resolve_preset("scenes", name, "presets");
-        std::printf("scene    %-18s %s\n", name.c_str(), load_scene(file).description.c_str());
+        std::printf("scene    %-22s %s\n", name.c_str(), load_scene(file).description.c_str());
     }
     return 0;
 }

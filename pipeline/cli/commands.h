@@ -29,6 +29,7 @@ struct FamilyCommand {
     std::string out;  // a directory for the members' files, or an image for a contact sheet
     int width = 1920, height = 1080;  // of the contact sheet
     int samples = 1;                  // stroke-mask samples per pixel of the contact sheet
+    std::string style = "strokes";    // the contact sheet's crowns: strokes or a graftal
     std::vector<std::string> set;
     std::string save_preset;
 };

@@ -118,6 +118,9 @@ Command add_family(CLI::App& app) {
     f->add_option("--samples", c->samples,
                   "Contact sheet samples per pixel (1, 4 or 16; the feather is filtered)")
         ->check(CLI::IsMember({1, 4, 16}));
+    f->add_option("--style", c->style,
+                  "Contact sheet: paint the crowns in \"strokes\" (the default) or as a graftal "
+                  "description's tufts (a name from presets/graftals or a JSON file)");
     f->add_option("--set", c->set, "Override a preset key: POINTER=VALUE");
     f->add_option("--save-preset", c->save_preset, "Write the fully resolved parameters to FILE");
 

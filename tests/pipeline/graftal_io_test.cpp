@@ -62,7 +62,8 @@ TEST(GraftalFiles, TheShippedOnesLoadWithTheirLooks) {
     // Colours are read as sRGB and kept linear: #4f7a2b's green 0x7a = 122 is 0.195 linear.
     EXPECT_NEAR(grass.examples[0].primitives[0].color.g, 0.1946f, 1e-3f);
     const GraftalDesc corot = load_graftal("corot-leaf");
-    EXPECT_TRUE(corot.alpha_from_rho);
+    EXPECT_EQ(corot.every_k, 1);  // a dab at every leaf, as the strokes have
+    EXPECT_GT(corot.light, 0.0f);
 }
 
 TEST(GraftalFiles, DefaultsForWhatAFileLeavesOut) {

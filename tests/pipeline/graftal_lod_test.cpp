@@ -176,6 +176,24 @@ TEST(GraftalLod, AFrameAloneEqualsTheSameFrameInSequence) {
     EXPECT_GE(distinct, 4);  // the track does move through the levels
 }
 
+TEST(GraftalLod, ATuftThatNeverChangesLevelReplaysToWhatSteppingGives) {
+    // replay_tuft starts a tuft that chose one level at every frame where the first frame
+    // leaves it; it must be exactly where stepping every frame ends, at each level.
+    const TuftRules rules = four_levels(6, 0.25f, 0.3f);
+    for (float lambda : {0.2f, 1.1f, 2.5f, 3.7f}) {
+        TuftState stepped;
+        for (int f = 0; f <= 80; ++f)
+            step_tuft(stepped, rules, tuft_level(rules.levels, lambda), 1.0 / 24);
+        const TuftState alone = replay_tuft(
+            rules, [&](int) { return lambda; }, 80, 24);
+        EXPECT_EQ(alone.level, stepped.level) << lambda;
+        EXPECT_EQ(alone.tau, stepped.tau) << lambda;
+        EXPECT_EQ(alone.recent, stepped.recent) << lambda;
+        EXPECT_EQ(alone.average, stepped.average) << lambda;
+        EXPECT_EQ(alone.started, stepped.started) << lambda;
+    }
+}
+
 TEST(GraftalLod, LocalFramesAreOrthonormalEvenWhereTheRuleDegenerates) {
     Rng rng = make_rng(9, Purpose::kSurface, 2);
     auto unit = [&] {

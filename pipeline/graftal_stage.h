@@ -1,0 +1,49 @@
+// The graftals stage of a frame (file 000): each tuft's level chosen from its λ, filtered and
+// switched with hysteresis along the camera track replayed from its first frame, its graftals
+// posed (σ, ρ, τ, λ) and drawn into patches, each patch a sprite that composites with the
+// strokes in depth order.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "pipeline/graftal_instances.h"
+#include "pipeline/sprites.h"
+
+namespace pleinair {
+
+struct Shot;
+struct FrameView;
+
+// Once per shot: the graftals of every family whose style is a graftal description (at its
+// trees' leaf particles) and of every such material (on the terrain where the terrain has that
+// material, above any water, and on the rocks made of it), sites and tufts keyed so that a
+// tree or a face keeps its graftals whatever else the scene holds.
+std::vector<ShotGraftals> build_graftals(const Shot& shot);
+
+struct GraftalStageReport {
+    uint64_t tufts = 0;              // in the shot
+    uint64_t drawn = 0;              // graftals drawn this frame
+    uint64_t growing = 0;            // of those, growing in or fading out (0 < τ < 1)
+    uint64_t culled = 0;             // off screen, through the near plane or not at their level
+    uint64_t pixels = 0;             // patch pixels rasterised
+    uint64_t replayed = 0;           // frames of the track replayed for the tufts' filters
+    double draw_ms = 0;              // of the stage's time, drawing the patches (Cairo)
+    std::vector<uint64_t> at_level;  // tufts at each level after filtering, over every group
+};
+
+// The sprite of each graftal drawn in the frame (kind kGraftal, its patch in sprites.patches,
+// its τ as its fade), appended in a fixed order: group, tuft, graftal. Tufts and patches are
+// worked out in parallel; the bytes do not depend on the number of threads. The tufts' levels
+// are chosen as seen from `lod_view` when given (the coherence bench freezes them at its first
+// frame), from `view` otherwise.
+GraftalStageReport add_graftal_sprites(const Shot& shot, const FrameView& view, SpriteSet& sprites,
+                                       const FrameView* lod_view = nullptr);
+
+// For the coherence bench: each graftal's presence at `view` (its τ: 0 not drawn, 1 fully in),
+// -1 where its base is off screen, and the sprite keys they go by, in the same order (group,
+// graftal).
+std::vector<float> graftal_presences(const Shot& shot, const FrameView& view);
+std::vector<uint64_t> graftal_keys(const Shot& shot);
+
+}  // namespace pleinair

@@ -1,0 +1,102 @@
+// What graftals cost: one graftal drawn by Cairo (per shipped description, at about 40 pixels),
+// the graftals stage of a frame (tufts replayed along the track, posed and drawn), and whole
+// frames of the same scenes painted in strokes and in graftals, at 960 x 540 on all cores.
+// Figures: BENCHMARKS.md ("Graftals").
+#include <benchmark/benchmark.h>
+
+#include "pipeline/graftal_draw.h"
+#include "pipeline/graftal_io.h"
+#include "pipeline/graftal_stage.h"
+#include "pipeline/paint.h"
+#include "pipeline/presets.h"
+#include "pipeline/shot.h"
+
+using namespace pleinair;
+
+namespace {
+
+const char* const kDescs[] = {"truffula-tuft", "seuss-leaf-tuft", "grass-tuft", "corot-leaf"};
+
+// One graftal of each example in turn, 40 pixels long, facing a 960 x 540 camera.
+void BM_GraftalDraw(benchmark::State& state) {
+    const GraftalDesc d = load_graftal(kDescs[state.range(0)]);
+    state.SetLabel(kDescs[state.range(0)]);
+    CameraParams cp;
+    cp.position = {0, 0, 10};
+    cp.look_at = {0, 0, 0};
+    cp.width = 960, cp.height = 540;
+    Camera cam;
+    make_camera(cp, cam);
+    GraftalInstance g;
+    g.length = static_cast<float>(40.0 * 10.0 / cam.focal_px);
+    g.position = {0, -0.5 * g.length, 0};
+    int64_t pixels = 0, n = 0;
+    for (auto _ : state) {
+        g.example = static_cast<uint16_t>(n % static_cast<int64_t>(d.examples.size()));
+        g.angle = static_cast<float>(n % 90);
+        const GraftalPatch p = draw_graftal(d, g, cam, {3.0f, 1, 1, 1});
+        pixels += static_cast<int64_t>(p.pixels.size());
+        ++n;
+        benchmark::DoNotOptimize(p.pixels.data());
+    }
+    state.counters["patch_px"] =
+        benchmark::Counter(double(pixels) / double(std::max<int64_t>(n, 1)));
+    state.SetItemsProcessed(n);
+}
+BENCHMARK(BM_GraftalDraw)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
+
+SceneDesc scene(const char* name, std::vector<std::string> sets = {}) {
+    sets.push_back("/camera/width=960");
+    sets.push_back("/camera/height=540");
+    return load_scene(resolve_preset("scenes", name, "SCENE"), sets);
+}
+
+// The graftals stage alone at frame 97 of the truffula walk (96 frames replayed).
+void BM_GraftalStage(benchmark::State& state) {
+    const Shot shot = build_shot(scene("truffula-walk"));
+    const FrameView view = view_at(shot.scene, frame_time(97, shot.scene.fps));
+    uint64_t drawn = 0;
+    for (auto _ : state) {
+        SpriteSet sprites;
+        drawn = add_graftal_sprites(shot, view, sprites).drawn;
+        benchmark::DoNotOptimize(sprites.sprites.data());
+    }
+    state.counters["graftals"] = double(drawn);
+    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(drawn));
+}
+BENCHMARK(BM_GraftalStage)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Whole frames: each scene in its two styles.
+struct Pair {
+    const char* label;
+    const char* scene;
+    std::vector<std::string> sets;
+};
+const Pair kFrames[] = {
+    {"mortefontaine strokes", "mortefontaine", {}},
+    {"mortefontaine graftals", "mortefontaine-graftals", {}},
+    {"truffula strokes",
+     "truffula",
+     {"/families/truffula/style=\"strokes\"", "/materials/turf/style=\"strokes\""}},
+    {"truffula graftals", "truffula", {}},
+};
+
+void BM_Frame(benchmark::State& state) {
+    const Pair& p = kFrames[state.range(0)];
+    state.SetLabel(p.label);
+    const Shot shot = build_shot(scene(p.scene, p.sets));
+    const FrameSettings settings = scene_frame_settings(shot.scene);
+    FrameReport rep;
+    for (auto _ : state) {
+        rep = FrameReport{};
+        benchmark::DoNotOptimize(paint_frame(shot, still_view(shot.scene), settings, &rep));
+    }
+    state.counters["leaf_strokes"] = double(rep.leaf_sprites);
+    state.counters["surface_strokes"] = double(rep.surface_sprites);
+    state.counters["graftals"] = double(rep.graftal_sprites);
+}
+BENCHMARK(BM_Frame)->DenseRange(0, 3)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();
