@@ -112,8 +112,13 @@ struct GraftalDesc {
     float preferred_size_px = 25;  // the screen size at which σ = 1
     float length = 1;              // world length of a graftal of canonical length 1
     GraftalPlacement placement = GraftalPlacement::kLeafParticles;
-    int every_k = 4;              // kEveryKthFace and kLeafParticles
-    float per_area = 1;           // kDensity: graftals per square world unit
+    int every_k = 4;     // kEveryKthFace and kLeafParticles
+    float per_area = 1;  // kDensity: graftals per square world unit; kDifference's candidates
+    // kDifference (file 004): the desire image's cell, the dot and the desire a tuft needs.
+    int cell_px = 4;
+    int dot_cells = 5;
+    float threshold = 0.35f;
+    float band = 0.3f;            // tufts fade in over this much desire above the threshold
     bool alpha_from_rho = false;  // file 001: opacity = ρ, so graftals fade away from silhouettes
     float light = 0;              // how much the sun shades them (graftal_io.cpp)
     std::vector<GraftalExample> examples;

@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "generators/tree_mesh.h"
+#include "pipeline/graftal_raster.h"
 #include "shading/color.h"
 #include "shading/portable_math.h"
 
@@ -65,6 +66,91 @@ void add_path(cairo_t* cr, const std::vector<Pt>& pts, bool close) {
     if (close) cairo_close_path(cr);
 }
 
+// The polygon turning the positive way (its signed area >= 0), so that shapes added to one
+// coverage buffer add up where they overlap instead of cancelling.
+std::vector<Pt> positive(std::vector<Pt> pts) {
+    double area = 0;
+    for (size_t i = 0; i < pts.size(); ++i) {
+        const Pt& a = pts[i];
+        const Pt& b = pts[(i + 1) % pts.size()];
+        area += a.x * b.y - b.x * a.y;
+    }
+    if (area < 0) std::reverse(pts.begin(), pts.end());
+    return pts;
+}
+
+// An outline as polygons: a quad along each segment and an octagon at each vertex (the round
+// join and cap), all turning the same way.
+void outline_polygons(CoverageRaster& r, const std::vector<Pt>& pts, bool closed, double width) {
+    const double h = 0.5 * width;
+    const size_t n = pts.size(), segments = closed ? n : n - 1;
+    for (size_t i = 0; i < segments; ++i) {
+        const Pt a = pts[i], b = pts[(i + 1) % n];
+        Pt d = b - a;
+        const double len = std::sqrt(d.x * d.x + d.y * d.y);
+        if (!(len > 1e-9)) continue;
+        d /= len;
+        const Pt across(-d.y * h, d.x * h);
+        r.polygon(positive({a + across, b + across, b - across, a - across}));
+    }
+    for (const Pt& c : pts) {
+        std::vector<Pt> disc;
+        for (int k = 0; k < 8; ++k) {
+            // cos and sin of k x 45 degrees, exact enough as constants.
+            static const double cs[8][2] = {{1, 0},  {0.70710678118654752, 0.70710678118654752},
+                                            {0, 1},  {-0.70710678118654752, 0.70710678118654752},
+                                            {-1, 0}, {-0.70710678118654752, -0.70710678118654752},
+                                            {0, -1}, {0.70710678118654752, -0.70710678118654752}};
+            disc.push_back(c + Pt(cs[k][0] * h, cs[k][1] * h));
+        }
+        r.polygon(positive(disc));
+    }
+}
+
+// "Over" of one colour at a coverage into 8-bit premultiplied ARGB, as Cairo's image surface
+// holds it.
+void over(GraftalPatch& patch, const std::vector<float>& cover, const glm::vec3& color,
+          float alpha) {
+    for (size_t i = 0; i < cover.size(); ++i) {
+        const float a = cover[i] * alpha;
+        if (!(a > 0.0f)) continue;
+        uint32_t& px = patch.pixels[i];
+        const float keep = 1.0f - a;
+        // Rounded to the nearest level; every term is in [0, 255.5), so truncation after +0.5
+        // rounds (and is much cheaper than lround).
+        auto channel = [&](int shift, float src) {
+            const float v = src * 255.0f + static_cast<float>((px >> shift) & 0xffu) * keep;
+            return std::min(static_cast<uint32_t>(v + 0.5f), 255u) << shift;
+        };
+        px = channel(24, a) | channel(16, color.x * a) | channel(8, color.y * a) |
+             channel(0, color.z * a);
+    }
+}
+
+void draw_scanline(const std::vector<Shape>& shapes, GraftalPatch& patch) {
+    CoverageRaster r(patch.width, patch.height);
+    std::vector<float> cover;
+    const Pt origin(patch.x0, patch.y0);
+    auto local = [&](std::vector<Pt> pts) {
+        for (Pt& p : pts) p -= origin;
+        return pts;
+    };
+    for (const Shape& s : shapes) {
+        if (!s.fill.empty()) {
+            r.clear();
+            for (const auto& sub : s.fill) r.polygon(positive(local(sub)));
+            r.coverage(cover);
+            over(patch, cover, s.color, s.alpha);
+        }
+        if (!s.outline.empty()) {
+            r.clear();
+            outline_polygons(r, local(s.outline), s.outline_closed, s.outline_px);
+            r.coverage(cover);
+            over(patch, cover, s.outline_color, s.alpha);
+        }
+    }
+}
+
 }  // namespace
 
 glm::dvec3 graftal_point(const GraftalAxes& axes, const GraftalInstance& g, const glm::vec3& p,
@@ -79,7 +165,7 @@ glm::dvec3 graftal_point(const GraftalAxes& axes, const GraftalInstance& g, cons
 }
 
 GraftalPatch draw_graftal(const GraftalDesc& desc, const GraftalInstance& g, const Camera& cam,
-                          const GraftalPose& pose, int max_px) {
+                          const GraftalPose& pose, int max_px, GraftalRaster raster) {
     if (g.example >= desc.examples.size() || !(pose.tau > 0.0f) || !(pose.opacity > 0.0f))
         return {};
     const GraftalExample& ex = desc.examples[g.example];
@@ -176,6 +262,10 @@ GraftalPatch draw_graftal(const GraftalDesc& desc, const GraftalInstance& g, con
     patch.width = std::min(x1 - x0, max_px), patch.height = std::min(y1 - y0, max_px);
     patch.pixels.assign(static_cast<size_t>(patch.width) * patch.height, 0u);
 
+    if (raster == GraftalRaster::kScanline) {
+        draw_scanline(shapes, patch);
+        return patch;
+    }
     cairo_surface_t* surface = cairo_image_surface_create_for_data(
         reinterpret_cast<unsigned char*>(patch.pixels.data()), CAIRO_FORMAT_ARGB32, patch.width,
         patch.height, 4 * patch.width);

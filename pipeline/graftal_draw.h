@@ -10,6 +10,7 @@
 #include "pipeline/graftal.h"
 #include "pipeline/graftal_instances.h"
 #include "pipeline/graftal_lod.h"
+#include "pipeline/settings.h"
 
 namespace pleinair {
 
@@ -35,7 +36,8 @@ struct GraftalPose {
 // plane or it misses the frame. Pure: the same arguments give the same bytes on any thread.
 // `max_px` bounds the patch's side, so a graftal at the eye cannot ask for a huge buffer.
 GraftalPatch draw_graftal(const GraftalDesc& desc, const GraftalInstance& g, const Camera& cam,
-                          const GraftalPose& pose, int max_px = 2048);
+                          const GraftalPose& pose, int max_px = 2048,
+                          GraftalRaster raster = GraftalRaster::kScanline);
 
 // The local frame's rotation of `g` about its normal, applied to an example's axes: where its
 // canonical point (x, y, z) goes in the world, before the growth scale.

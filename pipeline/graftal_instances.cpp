@@ -37,7 +37,10 @@ std::vector<GraftalSite> leaf_sites(const GraftalDesc& desc, const std::vector<g
                                     const std::vector<glm::vec3>& normals, uint64_t seed,
                                     uint32_t object) {
     std::vector<GraftalSite> out;
-    const uint32_t k = static_cast<uint32_t>(std::max(desc.every_k, 1));
+    // By the difference image, every leaf is a candidate; the frame chooses among them.
+    const uint32_t k = desc.placement == GraftalPlacement::kDifference
+                           ? 1u
+                           : static_cast<uint32_t>(std::max(desc.every_k, 1));
     for (size_t j = 0; j < world.size() && j < normals.size(); ++j) {
         if (k > 1) {
             Rng rng = make_rng(seed, Purpose::kGraftal, object, j, 3);

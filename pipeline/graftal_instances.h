@@ -33,7 +33,7 @@ std::vector<GraftalSite> mesh_sites(const GraftalDesc& desc, const QuadMesh& mes
 
 // Sites at leaf particles (world positions and unit normals, keyed by particle index): every
 // one, or with every_k > 1 one in k chosen per particle by the seed, so crowns of thousands of
-// leaves carry a few hundred tufts.
+// leaves carry a few hundred tufts. By the difference image every leaf is a candidate site.
 std::vector<GraftalSite> leaf_sites(const GraftalDesc& desc, const std::vector<glm::dvec3>& world,
                                     const std::vector<glm::vec3>& normals, uint64_t seed,
                                     uint32_t object);

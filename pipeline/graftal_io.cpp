@@ -68,7 +68,19 @@ void visit_graftal(G& g, V& v) {
                   "For \"every_kth_face\": one face in k; for \"leaf_particles\": one particle "
                   "in k (a crown has thousands).");
         v.real("per_area", g.per_area, {1e-6, 1e6}, "1/world unit²",
-               "For \"density\": graftals per square world unit.");
+               "For \"density\": graftals per square world unit; for \"difference_image\" on "
+               "a material, its candidates' density (on a family, every leaf is a candidate).");
+        v.integer("cell_px", g.cell_px, {1, 64},
+                  "For \"difference_image\": pixels a side of the desire image's cells.");
+        v.integer("dot_cells", g.dot_cells, {1, 61},
+                  "For \"difference_image\": cells across the blurred dot a tuft subtracts (a "
+                  "row of Pascal's triangle); larger spaces tufts further apart.");
+        v.real("threshold", g.threshold, {0.001, 1}, "",
+               "For \"difference_image\": desire left where a tuft stands, at least this.");
+        v.real("band", g.band, {0, 1}, "",
+               "For \"difference_image\": a tuft's opacity eases from 0 at the threshold to 1 "
+               "this much above it, and it takes that share of its dot, so tufts fade in and "
+               "out as the view moves instead of popping; 0 places them whole.");
     });
     v.object("variation", "How copies differ from their example, drawn by the seed", [&] {
         v.real("length", g.variation.length, {0, 0.95}, "", "Length scale 1 ± this.");

@@ -7,6 +7,7 @@
 #include <queue>
 
 #include "generators/rng.h"
+#include "shading/curves.h"
 
 namespace pleinair {
 
@@ -26,6 +27,37 @@ void subtract_dot(DesireImage& img, const std::vector<float>& dot, int row, int 
             d = std::max(0.0f, d - strength * dot[static_cast<size_t>(j) * n + i]);
         }
     }
+}
+
+// Adds strength x dot centred on (cx, cy) to an accumulator, clipped to the image.
+void add_dot(DesireImage& img, const std::vector<float>& dot, int row, int cx, int cy,
+             float strength) {
+    const int r = row / 2, n = row + 1;
+    for (int j = 0; j < n; ++j) {
+        const int y = cy - r + j;
+        if (y < 0 || y >= img.height) continue;
+        for (int i = 0; i < n; ++i) {
+            const int x = cx - r + i;
+            if (x < 0 || x >= img.width) continue;
+            img.desire[static_cast<size_t>(y) * img.width + x] +=
+                strength * dot[static_cast<size_t>(j) * n + i];
+        }
+    }
+}
+
+// The desire at a continuous position (pixel centres at +0.5), bilinear between the four
+// nearest pixels, clamped at the borders.
+float desire_at(const DesireImage& img, float u, float v, int& x0, int& y0, float& fx, float& fy) {
+    u -= 0.5f, v -= 0.5f;
+    const float fu = std::floor(u), fv = std::floor(v);
+    x0 = static_cast<int>(fu), y0 = static_cast<int>(fv);
+    fx = u - fu, fy = v - fv;
+    auto at = [&](int x, int y) {
+        x = std::clamp(x, 0, img.width - 1), y = std::clamp(y, 0, img.height - 1);
+        return img.desire[static_cast<size_t>(y) * img.width + x];
+    };
+    return (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
+           fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
 }
 
 bool valid(const DesireImage& img) {
@@ -51,8 +83,9 @@ std::vector<float> pascal_dot(int row) {
 
 std::vector<uint32_t> place_candidates(DesireImage& img,
                                        const std::vector<GraftalCandidate>& candidates,
-                                       const DifferencePlacement& p) {
+                                       const DifferencePlacement& p, std::vector<float>* weights) {
     std::vector<uint32_t> placed;
+    if (weights) weights->clear();
     if (!valid(img)) return placed;
     // The same order in every frame: by a hash of each candidate's key, ties by the key.
     std::vector<uint32_t> order(candidates.size());
@@ -64,6 +97,10 @@ std::vector<uint32_t> place_candidates(DesireImage& img,
     });
     const std::vector<float> dot = pascal_dot(p.dot_row);
     const int row = std::clamp(p.dot_row, 0, 60);
+    // The dots placed so far, for candidates that carry their own desire.
+    DesireImage taken{img.width, img.height, std::vector<float>(img.desire.size(), 0.0f), {}};
+    const bool own = std::any_of(candidates.begin(), candidates.end(),
+                                 [](const GraftalCandidate& c) { return c.desire >= 0; });
     for (uint32_t c : order) {
         if (placed.size() >= p.max_count) break;
         const glm::vec2 px = candidates[c].pixel;
@@ -71,9 +108,27 @@ std::vector<uint32_t> place_candidates(DesireImage& img,
         const int x = static_cast<int>(px.x), y = static_cast<int>(px.y);
         const size_t at = static_cast<size_t>(y) * img.width + x;
         if (!img.id.empty() && img.id[at] != candidates[c].object) continue;  // hidden there
-        if (!(img.desire[at] >= p.threshold)) continue;
+        // Read and subtracted where the candidate is, between pixels: a candidate moving by a
+        // fraction of a pixel changes the desire it leaves by a fraction, not by a whole dot
+        // jumping to the next pixel, and so the choices after it change little.
+        int x0, y0;
+        float fx, fy;
+        const float image = desire_at(img, px.x, px.y, x0, y0, fx, fy);
+        const float left = candidates[c].desire >= 0
+                               ? candidates[c].desire - desire_at(taken, px.x, px.y, x0, y0, fx, fy)
+                               : image;
+        if (!(left >= p.threshold)) continue;
+        const float weight =
+            p.band > 0 ? smoothstep(p.threshold, p.threshold + p.band, left) : 1.0f;
+        if (!(weight > 0.0f)) continue;
         placed.push_back(c);
-        subtract_dot(img, dot, row, x, y, p.strength);
+        if (weights) weights->push_back(weight);
+        const float w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+        for (int k = 0; k < 4; ++k) {
+            const float amount = p.strength * weight * w[k];
+            subtract_dot(img, dot, row, x0 + (k & 1), y0 + (k >> 1), amount);
+            if (own) add_dot(taken, dot, row, x0 + (k & 1), y0 + (k >> 1), amount);
+        }
     }
     return placed;
 }

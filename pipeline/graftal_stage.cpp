@@ -7,10 +7,12 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <limits>
 
 #include "generators/tree_mesh.h"
 #include "pipeline/graftal_draw.h"
 #include "pipeline/graftal_lod.h"
+#include "pipeline/graftal_placement.h"
 #include "pipeline/lod.h"
 #include "pipeline/paint.h"
 #include "pipeline/shot.h"
@@ -81,10 +83,91 @@ bool near_screen(const Camera& cam, const GraftalInstance& inst, Projection& p) 
            p.y <= cam.height + reach;
 }
 
+}  // namespace
+
+std::vector<std::vector<float>> difference_placement(const Shot& shot, const Camera& cam) {
+    std::vector<std::vector<float>> placed(shot.graftals.size());
+    const GraftalDesc* first = nullptr;
+    for (size_t gi = 0; gi < shot.graftals.size(); ++gi) {
+        const ShotGraftals& g = shot.graftals[gi];
+        if (g.desc->placement != GraftalPlacement::kDifference) continue;
+        placed[gi].assign(g.sites.size(), 0.0f);
+        if (!first) first = g.desc.get();
+    }
+    if (!first) return placed;
+    // One desire image for every such group (the first one's cell, dot and threshold), so a
+    // nearer crown's tufts take the desire before a farther one's behind it.
+    const int cell = std::max(first->cell_px, 1);
+    DesireImage img;
+    img.width = (cam.width + cell - 1) / cell, img.height = (cam.height + cell - 1) / cell;
+    const size_t cells = static_cast<size_t>(img.width) * img.height;
+    img.desire.assign(cells, 0.0f);
+    img.id.assign(cells, 0u);
+    std::vector<float> nearest(cells, std::numeric_limits<float>::infinity());
+    std::vector<float> other(cells, std::numeric_limits<float>::infinity());
+    std::vector<GraftalCandidate> candidates;
+    std::vector<std::pair<uint32_t, uint32_t>> from;  // (group, site) of each candidate
+    std::vector<float> depth;
+    std::vector<size_t> cell_of;
+    for (size_t gi = 0; gi < shot.graftals.size(); ++gi) {
+        const ShotGraftals& g = shot.graftals[gi];
+        if (placed[gi].empty()) continue;
+        for (size_t s = 0; s < g.sites.size(); ++s) {
+            const GraftalSite& site = g.sites[s];
+            const Projection p = project(cam, site.position);
+            if (!p.in_front || !(p.x >= 0) || !(p.y >= 0) || !(p.x < cam.width) ||
+                !(p.y < cam.height))
+                continue;
+            const int cx = std::min(static_cast<int>(p.x) / cell, img.width - 1);
+            const int cy = std::min(static_cast<int>(p.y) / cell, img.height - 1);
+            const size_t c = static_cast<size_t>(cy) * img.width + cx;
+            // Desire where detail is wanted: the description's ρ (file 004's N.V).
+            const glm::vec3 v(safe_normalize(cam.eye - site.position, -cam.forward));
+            const float rho = graftal_rho(g.desc->rho, site.normal, v);
+            img.desire[c] = std::max(img.desire[c], rho);
+            // The nearest candidate of each cell, and the nearest of any other object.
+            if (p.depth < nearest[c]) {
+                if (img.id[c] != site.object) other[c] = nearest[c];
+                nearest[c] = p.depth, img.id[c] = site.object;
+            } else if (site.object != img.id[c] && p.depth < other[c]) {
+                other[c] = p.depth;
+            }
+            // Its own desire, exactly where it stands: it changes smoothly as the view moves,
+            // where the image's cell values jump as candidates cross cells.
+            candidates.push_back({glm::vec2(p.x / float(cell), p.y / float(cell)), site.object,
+                                  (uint64_t(site.object) << 40) ^ site.key, rho});
+            depth.push_back(p.depth), cell_of.push_back(c);
+            from.emplace_back(static_cast<uint32_t>(gi), static_cast<uint32_t>(s));
+        }
+    }
+    // Hidden candidates want nothing: a candidate further than the nearest of another object in
+    // its cell (another crown) by more than 2% of its distance loses its desire over the next
+    // 6%, so occlusion fades a tuft instead of refusing it outright when the nearest changes.
+    for (size_t k = 0; k < candidates.size(); ++k) {
+        const size_t c = cell_of[k];
+        const float occluder = candidates[k].object == img.id[c] ? other[c] : nearest[c];
+        const float behind = (depth[k] - occluder) / std::max(depth[k], 1e-6f);
+        candidates[k].desire *= 1.0f - smoothstep(0.02f, 0.08f, behind);
+    }
+    img.id.clear();  // occlusion is in the candidates' own desire
+    DifferencePlacement params;
+    params.dot_row = std::max(first->dot_cells - 1, 0);
+    params.threshold = first->threshold;
+    params.band = first->band;
+    std::vector<float> weights;
+    const std::vector<uint32_t> chosen = place_candidates(img, candidates, params, &weights);
+    for (size_t i = 0; i < chosen.size(); ++i)
+        placed[from[chosen[i]].first][from[chosen[i]].second] = weights[i];
+    return placed;
+}
+
+namespace {
+
 // One graftal to draw: where it comes from and its pose.
 struct Draw {
     uint32_t group, instance;
     GraftalPose pose;
+    float weight;  // the difference image's (1 for other placements)
 };
 
 }  // namespace
@@ -115,9 +198,13 @@ std::vector<ShotGraftals> build_graftals(const Shot& shot) {
         if (!desc) continue;
         const uint32_t object = 0x10000u + static_cast<uint32_t>(m);
         std::vector<GraftalSite> sites;
+        // The difference image chooses among candidates at the description's density.
+        GraftalDesc candidates = *desc;
+        if (candidates.placement == GraftalPlacement::kDifference)
+            candidates.placement = GraftalPlacement::kDensity;
         if (land.has_terrain) {
             for (const GraftalSite& s :
-                 mesh_sites(*desc, land.terrain_mesh, kGraftalSeed, object)) {
+                 mesh_sites(candidates, land.terrain_mesh, kGraftalSeed, object)) {
                 if (terrain_material_at(scene, s.position) != m) continue;
                 if (land.has_water && s.position.y <= scene.water.level) continue;
                 sites.push_back(s);
@@ -126,7 +213,8 @@ std::vector<ShotGraftals> build_graftals(const Shot& shot) {
         for (size_t r = 0; r < scene.rocks.size() && r < land.rocks.size(); ++r) {
             if (scene.rocks[r].material != m) continue;
             // Keys apart from the terrain's: a rock's sites are numbered from 2^40 x (r + 1).
-            for (GraftalSite s : mesh_sites(*desc, land.rocks[r], kGraftalSeed + r + 1, object)) {
+            for (GraftalSite s :
+                 mesh_sites(candidates, land.rocks[r], kGraftalSeed + r + 1, object)) {
                 s.key += (uint64_t(r) + 1) << 40;
                 sites.push_back(s);
             }
@@ -136,7 +224,8 @@ std::vector<ShotGraftals> build_graftals(const Shot& shot) {
     return out;
 }
 
-GraftalStageReport add_graftal_sprites(const Shot& shot, const FrameView& view, SpriteSet& sprites,
+GraftalStageReport add_graftal_sprites(const Shot& shot, const FrameView& view,
+                                       const RenderSettings& settings, SpriteSet& sprites,
                                        const FrameView* lod_view) {
     GraftalStageReport rep;
     if (shot.graftals.empty()) return rep;
@@ -146,6 +235,7 @@ GraftalStageReport add_graftal_sprites(const Shot& shot, const FrameView& view, 
     rep.replayed = path.size();
     const glm::vec3 sun = glm::vec3(glm::normalize(view.sun_direction));
 
+    const std::vector<std::vector<float>> placed = difference_placement(shot, cam);
     std::vector<std::vector<Draw>> per_group(shot.graftals.size());
     std::vector<uint64_t> culled(shot.graftals.size(), 0), growing(shot.graftals.size(), 0);
     for (size_t gi = 0; gi < shot.graftals.size(); ++gi) {
@@ -159,13 +249,16 @@ GraftalStageReport add_graftal_sprites(const Shot& shot, const FrameView& view, 
         std::vector<std::vector<Draw>> per_site(g.sites.size());
         tbb::parallel_for(size_t{0}, g.sites.size(), [&](size_t s) {
             const TuftState& st = states[s];
+            // The difference image's choice, and how strongly (its weight fades the tuft).
+            const float weight = placed[gi].empty() ? 1.0f : placed[gi][s];
+            if (!(weight > 0.0f)) return;
             for (uint32_t k = g.first[s]; k < g.first[s + 1]; ++k) {
                 const GraftalInstance& inst = g.instances[k];
                 const float tau = instance_tau(inst, st);
                 Projection p;
                 if (!(tau > 0.0f) || !near_screen(cam, inst, p)) continue;
                 float rho = 1;
-                Draw dr{static_cast<uint32_t>(gi), k, {}};
+                Draw dr{static_cast<uint32_t>(gi), k, {}, weight};
                 dr.pose.tau = tau;
                 dr.pose.lambda =
                     lambda_of(d, cam, inst.position, inst.normal, inst.length, tau, &rho);
@@ -194,7 +287,8 @@ GraftalStageReport add_graftal_sprites(const Shot& shot, const FrameView& view, 
     tbb::parallel_for(size_t{0}, draws.size(), [&](size_t i) {
         const Draw& dr = draws[i];
         const ShotGraftals& g = shot.graftals[dr.group];
-        patches[i] = draw_graftal(*g.desc, g.instances[dr.instance], cam, dr.pose);
+        patches[i] = draw_graftal(*g.desc, g.instances[dr.instance], cam, dr.pose, 2048,
+                                  settings.graftal_raster);
     });
     rep.draw_ms = drawing.ms();
     const uint32_t first_item = static_cast<uint32_t>(shot.item_count());
@@ -216,7 +310,7 @@ GraftalStageReport add_graftal_sprites(const Shot& shot, const FrameView& view, 
         sp.depth = project(cam, inst.position).depth;
         sp.range = static_cast<float>(glm::length(cam.eye - inst.position));
         sp.object_id = inst.object;
-        sp.fade = dr.pose.tau;
+        sp.fade = dr.pose.tau * dr.weight;
         sp.k.lightness = inst.lightness * dr.pose.shade;
         sp.patch = static_cast<int32_t>(sprites.patches.size());
         rep.pixels += patch.pixels.size();
@@ -236,13 +330,16 @@ std::vector<float> graftal_presences(const Shot& shot, const FrameView& view) {
     std::vector<float> out;
     if (shot.graftals.empty()) return out;
     const std::vector<FrameView> path = replay_path(shot.scene, view);
-    for (const ShotGraftals& g : shot.graftals) {
+    const std::vector<std::vector<float>> placed = difference_placement(shot, view.camera);
+    for (size_t gi = 0; gi < shot.graftals.size(); ++gi) {
+        const ShotGraftals& g = shot.graftals[gi];
         const std::vector<TuftState> states = tuft_states(shot, g, path);
         for (const GraftalInstance& inst : g.instances) {
             Projection p;
             const bool on = near_screen(view.camera, inst, p) && p.x >= 0 && p.y >= 0 &&
                             p.x < view.camera.width && p.y < view.camera.height;
-            out.push_back(on ? instance_tau(inst, states[inst.tuft]) : -1.0f);
+            const float weight = placed[gi].empty() ? 1.0f : placed[gi][inst.tuft];
+            out.push_back(!on ? -1.0f : weight * instance_tau(inst, states[inst.tuft]));
         }
     }
     return out;

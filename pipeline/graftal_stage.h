@@ -33,14 +33,25 @@ struct GraftalStageReport {
 };
 
 // The sprite of each graftal drawn in the frame (kind kGraftal, its patch in sprites.patches,
-// its τ as its fade), appended in a fixed order: group, tuft, graftal. Tufts and patches are
-// worked out in parallel; the bytes do not depend on the number of threads. The tufts' levels
-// are chosen as seen from `lod_view` when given (the coherence bench freezes them at its first
-// frame), from `view` otherwise.
-GraftalStageReport add_graftal_sprites(const Shot& shot, const FrameView& view, SpriteSet& sprites,
+// its τ times its placement's weight as its fade), appended in a fixed order: group, tuft, graftal.
+// Tufts and patches are worked out in parallel; the bytes do not depend on the number of threads.
+// The tufts' levels are chosen as seen from `lod_view` when given (the coherence bench freezes them
+// at its first frame), from `view` otherwise.
+GraftalStageReport add_graftal_sprites(const Shot& shot, const FrameView& view,
+                                       const RenderSettings& settings, SpriteSet& sprites,
                                        const FrameView* lod_view = nullptr);
 
-// For the coherence bench: each graftal's presence at `view` (its τ: 0 not drawn, 1 fully in),
+// The tufts the difference image places in a frame seen by `cam` (file 004): per group, one
+// weight per site for the groups placed that way (0: not placed; below 1: fading, within `band`
+// of the threshold), empty for the others. The candidates are the
+// groups' sites on screen; the desire image, at the first such description's cell_px, holds
+// the largest ρ of the candidates in each cell and the ID image the nearest one's object; the
+// candidates are tried in the order of a hash of their keys, the same in every frame, so the
+// same ones win while the view changes a little, with no history (graftal_placement.h).
+std::vector<std::vector<float>> difference_placement(const Shot& shot, const Camera& cam);
+
+// For the coherence bench: each graftal's presence at `view` (its τ times its placement's
+// weight: 0 not drawn, 1 fully in),
 // -1 where its base is off screen, and the sprite keys they go by, in the same order (group,
 // graftal).
 std::vector<float> graftal_presences(const Shot& shot, const FrameView& view);

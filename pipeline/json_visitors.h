@@ -280,7 +280,7 @@ class Reader {
 // its own pointer, checked against the key table `read` visits, unknown keys reported.
 template <class Fn>
 inline void read_list(const json& parent, const char* key, const std::string& ptr,
-               std::vector<Problem>& problems, std::set<std::string>& plain, Fn&& read) {
+                      std::vector<Problem>& problems, std::set<std::string>& plain, Fn&& read) {
     auto it = parent.find(key);
     if (it == parent.end()) return;
     if (!it->is_array()) {

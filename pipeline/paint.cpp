@@ -152,23 +152,25 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
     if (plan.graftals) {
         // After the strokes' sprites, so their indices (and the shadow grids') stay as they are.
         PassTimer tg;
-        const GraftalStageReport g = add_graftal_sprites(shot, view, sprites, settings.lod_view);
+        const GraftalStageReport g =
+            add_graftal_sprites(shot, view, rs, sprites, settings.lod_view);
         rep.graftal_sprites = sprites.graftal;
         std::string levels;
         for (size_t l = 0; l < g.at_level.size(); ++l)
             levels += (l ? ", " : "") + std::to_string(g.at_level[l]);
-        rep.passes.push_back({"graftals", true,
-                              "tufts' levels from λ" +
-                                  (view.on_track ? ", filtered over " + std::to_string(g.replayed) +
-                                                       " frames of the track replayed"
-                                                 : std::string()) +
-                                  "; graftals drawn by Cairo into patches (" +
-                                  std::to_string(int(g.draw_ms + 0.5)) + " ms of it)",
-                              tg.ms(),
-                              std::to_string(g.tufts) + " tufts (per level: " + levels + "), " +
-                                  std::to_string(g.drawn) + " graftals drawn (" +
-                                  std::to_string(g.growing) + " growing or fading), " +
-                                  std::to_string(g.pixels) + " patch pixels"});
+        rep.passes.push_back(
+            {"graftals", true,
+             "tufts' levels from λ" +
+                 (view.on_track ? ", filtered over " + std::to_string(g.replayed) +
+                                      " frames of the track replayed"
+                                : std::string()) +
+                 "; graftals drawn by " +
+                 (rs.graftal_raster == GraftalRaster::kCairo ? "Cairo" : "scanline coverage") +
+                 " into patches (" + std::to_string(int(g.draw_ms + 0.5)) + " ms of it)",
+             tg.ms(),
+             std::to_string(g.tufts) + " tufts (per level: " + levels + "), " +
+                 std::to_string(g.drawn) + " graftals drawn (" + std::to_string(g.growing) +
+                 " growing or fading), " + std::to_string(g.pixels) + " patch pixels"});
     }
     t = PassTimer();
     const std::vector<uint32_t> order = depth_order(sprites.sprites);

@@ -57,9 +57,9 @@ void install_partial_cleanup();
 
 // Removes the temporaries in `dir` (not below it) whose writer is gone: a partial name of this
 // machine (or without a machine) whose PID is no live process, as a SIGKILL or a power cut
-// leaves. Another machine's temporaries are left to it: its writer may be alive. A temporary of a live process is
-// another run's write in progress and stays (as does, rarely, a dead writer's whose PID has been
-// reused: it is still never trusted as output). Returns how many were removed.
+// leaves. Another machine's temporaries are left to it: its writer may be alive. A temporary of a
+// live process is another run's write in progress and stays (as does, rarely, a dead writer's whose
+// PID has been reused: it is still never trusted as output). Returns how many were removed.
 size_t clear_partials(const std::filesystem::path& dir);
 
 }  // namespace pleinair

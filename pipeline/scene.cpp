@@ -223,6 +223,8 @@ void visit_sun_key(SunKey& k, V& v) {
 
 const std::pair<ShadowMode, const char*> kShadowModes[] = {
     {ShadowMode::kTransmissive, "transmissive"}, {ShadowMode::kThreshold, "threshold"}};
+const std::pair<GraftalRaster, const char*> kGraftalRasters[] = {
+    {GraftalRaster::kCairo, "cairo"}, {GraftalRaster::kScanline, "scanline"}};
 const std::pair<ShadowSamples, const char*> kShadowSamples[] = {
     {ShadowSamples::kParticle, "particle"}, {ShadowSamples::kFragment, "fragment"}};
 
@@ -309,6 +311,10 @@ void visit_scene(SceneDesc& s, V& v) {
                   "Read the stroke edge mask from a 256-entry table instead of sin and pow.");
         v.real("bark_coverage", s.build.bark_coverage, {0, 100}, "",
                "Bark strokes' total area over the area of the limbs' render mesh.");
+        v.choice("graftal_raster", r.graftal_raster, kGraftalRasters,
+                 "Who draws graftals into their patches: \"scanline\" (pleinair's signed-area "
+                 "coverage) or \"cairo\" (the library, the reference: frames 1.3-1.5x slower; "
+                 "BENCHMARKS.md, \"Graftals\").");
         v.choice("shadows", r.shadows, kShadowModes,
                  "How leaf strokes shadow: \"transmissive\" (light dimmed by every stroke crossed) "
                  "or \"threshold\" (a stroke blocks where its mask is over one half).");

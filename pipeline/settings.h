@@ -12,6 +12,11 @@ enum class ShadowMode { kThreshold, kTransmissive };
 // each sprite interpolated per fragment.
 enum class ShadowSamples { kParticle, kFragment };
 
+// Who turns a graftal's shapes into pixels (graftal_draw.h): pleinair's own scanline coverage
+// (graftal_raster.h), 1.3-1.5x faster frames than Cairo, which stays as the reference to compare
+// with (BENCHMARKS.md, "Graftals").
+enum class GraftalRaster { kCairo, kScanline };
+
 // What the shot is built with (scene keys under /render; they regrow strokes).
 struct BuildSettings {
     float bark_coverage = 2.5f;    // bark strokes' area over the limbs' area
@@ -44,6 +49,7 @@ struct RenderSettings {
     // averaged, so a stroke a silhouette uncovers or hides takes that many frames to change
     // whole; 1 decides it at the frame's time alone. Stills are unaffected.
     int occlusion_frames = 4;
+    GraftalRaster graftal_raster = GraftalRaster::kScanline;
 };
 
 }  // namespace pleinair

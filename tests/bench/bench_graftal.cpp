@@ -1,8 +1,11 @@
-// What graftals cost: one graftal drawn by Cairo (per shipped description, at about 40 pixels),
-// the graftals stage of a frame (tufts replayed along the track, posed and drawn), and whole
-// frames of the same scenes painted in strokes and in graftals, at 960 x 540 on all cores.
+// What graftals cost: one graftal drawn by Cairo and by pleinair's scanline coverage (per
+// shipped description, at about 40 pixels), the graftals stage of a frame (tufts replayed along
+// the track, posed and drawn), and whole frames of the same scenes painted in strokes and in
+// graftals by either rasteriser, at 960 x 540 on all cores.
 // Figures: BENCHMARKS.md ("Graftals").
 #include <benchmark/benchmark.h>
+
+#include <string>
 
 #include "pipeline/graftal_draw.h"
 #include "pipeline/graftal_io.h"
@@ -17,10 +20,12 @@ namespace {
 
 const char* const kDescs[] = {"truffula-tuft", "seuss-leaf-tuft", "grass-tuft", "corot-leaf"};
 
-// One graftal of each example in turn, 40 pixels long, facing a 960 x 540 camera.
+// One graftal of each example in turn, 40 pixels long, facing a 960 x 540 camera, drawn by
+// Cairo (second argument 0) or by pleinair's scanline coverage (1).
 void BM_GraftalDraw(benchmark::State& state) {
     const GraftalDesc d = load_graftal(kDescs[state.range(0)]);
-    state.SetLabel(kDescs[state.range(0)]);
+    const GraftalRaster raster = state.range(1) ? GraftalRaster::kScanline : GraftalRaster::kCairo;
+    state.SetLabel(std::string(kDescs[state.range(0)]) + (state.range(1) ? " scanline" : " cairo"));
     CameraParams cp;
     cp.position = {0, 0, 10};
     cp.look_at = {0, 0, 0};
@@ -34,7 +39,7 @@ void BM_GraftalDraw(benchmark::State& state) {
     for (auto _ : state) {
         g.example = static_cast<uint16_t>(n % static_cast<int64_t>(d.examples.size()));
         g.angle = static_cast<float>(n % 90);
-        const GraftalPatch p = draw_graftal(d, g, cam, {3.0f, 1, 1, 1});
+        const GraftalPatch p = draw_graftal(d, g, cam, {3.0f, 1, 1, 1}, 2048, raster);
         pixels += static_cast<int64_t>(p.pixels.size());
         ++n;
         benchmark::DoNotOptimize(p.pixels.data());
@@ -43,7 +48,7 @@ void BM_GraftalDraw(benchmark::State& state) {
         benchmark::Counter(double(pixels) / double(std::max<int64_t>(n, 1)));
     state.SetItemsProcessed(n);
 }
-BENCHMARK(BM_GraftalDraw)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_GraftalDraw)->ArgsProduct({{0, 1, 2, 3}, {0, 1}})->Unit(benchmark::kMicrosecond);
 
 SceneDesc scene(const char* name, std::vector<std::string> sets = {}) {
     sets.push_back("/camera/width=960");
@@ -58,7 +63,7 @@ void BM_GraftalStage(benchmark::State& state) {
     uint64_t drawn = 0;
     for (auto _ : state) {
         SpriteSet sprites;
-        drawn = add_graftal_sprites(shot, view, sprites).drawn;
+        drawn = add_graftal_sprites(shot, view, shot.scene.render, sprites).drawn;
         benchmark::DoNotOptimize(sprites.sprites.data());
     }
     state.counters["graftals"] = double(drawn);
@@ -74,11 +79,15 @@ struct Pair {
 };
 const Pair kFrames[] = {
     {"mortefontaine strokes", "mortefontaine", {}},
-    {"mortefontaine graftals", "mortefontaine-graftals", {}},
+    {"mortefontaine graftals, cairo",
+     "mortefontaine-graftals",
+     {"/render/graftal_raster=\"cairo\""}},
     {"truffula strokes",
      "truffula",
      {"/families/truffula/style=\"strokes\"", "/materials/turf/style=\"strokes\""}},
-    {"truffula graftals", "truffula", {}},
+    {"truffula graftals, cairo", "truffula", {"/render/graftal_raster=\"cairo\""}},
+    {"mortefontaine graftals, scanline", "mortefontaine-graftals", {}},
+    {"truffula graftals, scanline", "truffula", {}},
 };
 
 void BM_Frame(benchmark::State& state) {
@@ -95,7 +104,7 @@ void BM_Frame(benchmark::State& state) {
     state.counters["surface_strokes"] = double(rep.surface_sprites);
     state.counters["graftals"] = double(rep.graftal_sprites);
 }
-BENCHMARK(BM_Frame)->DenseRange(0, 3)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Frame)->DenseRange(0, 5)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <set>
 
 #include "generators/rng.h"
@@ -125,6 +126,44 @@ TEST(GraftalPlacement, ACandidateHiddenByAnotherObjectIsNotPlaced) {
     for (uint32_t i : place_candidates(img, c, {})) keys.push_back(c[i].key);
     std::sort(keys.begin(), keys.end());
     EXPECT_EQ(keys, (std::vector<uint64_t>{2, 3}));  // 1 is behind object 2; 4 and 5 are off
+}
+
+}  // namespace
+}  // namespace pleinair
+
+namespace pleinair {
+namespace {
+
+TEST(GraftalPlacement, ACandidateCarryingItsOwnDesireIsJudgedByIt) {
+    // The image wants graftals everywhere; the candidates' own desire decides instead, less
+    // the dots of those placed before them.
+    DesireImage img{32, 32, std::vector<float>(32 * 32, 1.0f), {}};
+    std::vector<GraftalCandidate> cands;
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x)
+            cands.push_back({glm::vec2(x + 0.5f, y + 0.5f), 0, uint64_t(y * 32 + x),
+                             x < 16 ? 0.2f : 1.0f});  // the left half does not want any
+    DifferencePlacement p;
+    p.dot_row = 4, p.threshold = 0.5f;
+    const std::vector<uint32_t> placed = place_candidates(img, cands, p);
+    ASSERT_FALSE(placed.empty());
+    for (uint32_t c : placed) EXPECT_GE(cands[c].pixel.x, 16.0f) << c;
+    // Spaced by their dots: no two placed side by side (a neighbour's dot takes 2/3 of 1).
+    for (uint32_t a : placed)
+        for (uint32_t b : placed)
+            if (a != b) {
+                const glm::vec2 d = cands[a].pixel - cands[b].pixel;
+                EXPECT_GT(std::abs(d.x) + std::abs(d.y), 1.5f);
+            }
+    // Moved by a tenth of a pixel, nearly all the same candidates win: what each leaves to the
+    // next changes by a tenth of a dot, not by a whole one.
+    for (auto& c : cands) c.pixel.x += 0.1f;
+    DesireImage again{32, 32, std::vector<float>(32 * 32, 1.0f), {}};
+    std::vector<uint32_t> a = placed, b = place_candidates(again, cands, p), both;
+    std::sort(a.begin(), a.end()), std::sort(b.begin(), b.end());
+    std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(both));
+    EXPECT_GT(double(both.size()) / double(a.size() + b.size() - both.size()), 0.9)
+        << both.size() << " of " << a.size() << " and " << b.size();
 }
 
 }  // namespace
