@@ -138,6 +138,8 @@ std::vector<float> presences(const Shot& shot, const FrameView& view, const Rend
     std::vector<std::vector<float>> per_item(shot.item_count());
     tbb::parallel_for(size_t{0}, per_item.size(), [&](size_t i) {
         for_each_particle(shot, i, [&](SpriteKind kind, size_t j, const RayOrigin& o) {
+            // Never drawn as a stroke: a graftal's crown or surface is measured by its graftals.
+            if (drawn_as_graftals(shot, i, kind, j)) return per_item[i].push_back(-1.0f);
             const ParticleLod l = particle_lod(shot, lod, i, kind, j, o.world);
             const Projection pr = project(cam, l.world);
             const bool on =

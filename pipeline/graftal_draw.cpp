@@ -1,6 +1,7 @@
 // Graftals to pixels: primitives projected through the graftal's local frame, then filled and
-// outlined by Cairo (its image backend: an exact-area scan converter, no hardware, no state
-// shared between surfaces, so each patch's bytes depend on its own arguments alone).
+// outlined by pleinair's scanline coverage (graftal_raster.h) or by Cairo (its image backend:
+// an exact-area scan converter, no state shared between surfaces). Either way each patch's
+// bytes depend on its own arguments alone.
 #include "pipeline/graftal_draw.h"
 
 #include <cairo.h>

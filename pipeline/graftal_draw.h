@@ -1,6 +1,7 @@
 // One graftal drawn for one frame: its example's primitives carried through its local frame to
-// the screen and rasterised, antialiased, by Cairo into a small patch that the compositor lays
-// into the frame's tiles in depth order with the strokes (composite.cpp).
+// the screen and rasterised, antialiased (by pleinair's scanline coverage or by Cairo), into a
+// small patch that the compositor lays into the frame's tiles in depth order with the strokes
+// (composite.cpp).
 #pragma once
 
 #include <cstdint>
@@ -34,7 +35,8 @@ struct GraftalPose {
 
 // The graftal as `cam` sees it; an empty patch when any of its points lies behind the near
 // plane or it misses the frame. Pure: the same arguments give the same bytes on any thread.
-// `max_px` bounds the patch's side, so a graftal at the eye cannot ask for a huge buffer.
+// `max_px` bounds the patch's side (a larger graftal is cropped), so a graftal at the eye of a
+// very large frame cannot ask for a huge buffer.
 GraftalPatch draw_graftal(const GraftalDesc& desc, const GraftalInstance& g, const Camera& cam,
                           const GraftalPose& pose, int max_px = 2048,
                           GraftalRaster raster = GraftalRaster::kScanline);

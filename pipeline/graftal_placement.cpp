@@ -13,9 +13,10 @@ namespace pleinair {
 
 namespace {
 
-// Subtracts strength x dot centred on (cx, cy), clipped to the image; desire never below 0.
-void subtract_dot(DesireImage& img, const std::vector<float>& dot, int row, int cx, int cy,
-                  float strength) {
+// Adds amount x dot centred on (cx, cy), clipped to the image; with `floor`, no value goes
+// below 0 (the desire image; the accumulator of dots taken has no floor to keep).
+void add_dot(DesireImage& img, const std::vector<float>& dot, int row, int cx, int cy, float amount,
+             bool floor = false) {
     const int r = row / 2, n = row + 1;
     for (int j = 0; j < n; ++j) {
         const int y = cy - r + j;
@@ -24,25 +25,15 @@ void subtract_dot(DesireImage& img, const std::vector<float>& dot, int row, int 
             const int x = cx - r + i;
             if (x < 0 || x >= img.width) continue;
             float& d = img.desire[static_cast<size_t>(y) * img.width + x];
-            d = std::max(0.0f, d - strength * dot[static_cast<size_t>(j) * n + i]);
+            d += amount * dot[static_cast<size_t>(j) * n + i];
+            if (floor) d = std::max(0.0f, d);
         }
     }
 }
 
-// Adds strength x dot centred on (cx, cy) to an accumulator, clipped to the image.
-void add_dot(DesireImage& img, const std::vector<float>& dot, int row, int cx, int cy,
-             float strength) {
-    const int r = row / 2, n = row + 1;
-    for (int j = 0; j < n; ++j) {
-        const int y = cy - r + j;
-        if (y < 0 || y >= img.height) continue;
-        for (int i = 0; i < n; ++i) {
-            const int x = cx - r + i;
-            if (x < 0 || x >= img.width) continue;
-            img.desire[static_cast<size_t>(y) * img.width + x] +=
-                strength * dot[static_cast<size_t>(j) * n + i];
-        }
-    }
+void subtract_dot(DesireImage& img, const std::vector<float>& dot, int row, int cx, int cy,
+                  float strength) {
+    add_dot(img, dot, row, cx, cy, -strength, true);
 }
 
 // The desire at a continuous position (pixel centres at +0.5), bilinear between the four

@@ -1,6 +1,7 @@
 // Signed-area accumulation: each edge, walked scanline by scanline, adds to each cell the share
 // of that scanline's height it crosses, split between the cells its span covers by the area
-// left of it; a running sum along the row is then the winding-weighted coverage.
+// left of it; a running sum along the row is then the winding-weighted coverage. Edges are cut
+// at the buffer's left and right sides, so shapes clipped by the patch keep exact coverage.
 #include "pipeline/graftal_raster.h"
 
 #include <algorithm>
@@ -23,15 +24,27 @@ void CoverageRaster::line(glm::dvec2 p0, glm::dvec2 p1) {
     if (!(std::isfinite(p0.x) && std::isfinite(p0.y) && std::isfinite(p1.x) && std::isfinite(p1.y)))
         return;
     if (p0.y == p1.y) return;  // a horizontal edge sweeps no area
+    // An edge crossing x = 0 or x = W is split there, so each piece lies on one side: left of
+    // the buffer a piece still counts for every pixel to its right (it becomes a vertical edge
+    // at x = 0), right of it for none (a vertical edge in the extra cell).
+    const double W = w_;
+    for (double X : {0.0, W})
+        if ((p0.x < X && p1.x > X) || (p0.x > X && p1.x < X)) {
+            const double t = (X - p0.x) / (p1.x - p0.x);
+            const glm::dvec2 mid(X, p0.y + t * (p1.y - p0.y));
+            line(p0, mid);
+            line(mid, p1);
+            return;
+        }
+    p0.x = std::clamp(p0.x, 0.0, W), p1.x = std::clamp(p1.x, 0.0, W);
     double dir = 1;
     if (p0.y > p1.y) std::swap(p0, p1), dir = -1;
-    // Left of the buffer, an edge still counts for every pixel to its right: clamped to x = 0.
-    // Right of it, it counts for none: clamped to the extra cell.
-    const double W = w_;
     const double dxdy = (p1.x - p0.x) / (p1.y - p0.y);
+    if (!std::isfinite(dxdy)) return;  // a sliver too thin to sweep any area
     const size_t stride = static_cast<size_t>(w_) + 2;
-    const int y_start = std::max(0, static_cast<int>(std::floor(p0.y)));
-    const int y_end = std::min(h_, static_cast<int>(std::ceil(p1.y)));
+    // Rows in [0, h), the bounds taken in double before they become ints.
+    const int y_start = static_cast<int>(std::clamp(std::floor(p0.y), 0.0, double(h_)));
+    const int y_end = static_cast<int>(std::clamp(std::ceil(p1.y), 0.0, double(h_)));
     for (int y = y_start; y < y_end; ++y) {
         const double ya = std::max<double>(y, p0.y), yb = std::min<double>(y + 1, p1.y);
         const double dy = yb - ya;

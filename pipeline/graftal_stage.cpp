@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 #include <limits>
 
+#include "generators/rng.h"
 #include "generators/tree_mesh.h"
 #include "pipeline/graftal_draw.h"
 #include "pipeline/graftal_lod.h"
@@ -17,6 +18,7 @@
 #include "pipeline/paint.h"
 #include "pipeline/shot.h"
 #include "shading/curves.h"
+#include "shading/portable_math.h"
 
 namespace pleinair {
 
@@ -37,7 +39,8 @@ ShotGraftals group_of(std::shared_ptr<const GraftalDesc> desc, std::vector<Graft
     return g;
 }
 
-// λ of a graftal of world length `length` at `position` with normal `n`, seen by `cam`; τ = 1.
+// λ of a graftal of world length `length` at `position` with normal `n`, seen by `cam`, at τ
+// (its ρ too, when asked).
 float lambda_of(const GraftalDesc& d, const Camera& cam, const glm::dvec3& position,
                 const glm::vec3& n, double length, float tau, float* rho_out = nullptr) {
     const glm::dvec3 to_eye = cam.eye - position;
@@ -49,7 +52,7 @@ float lambda_of(const GraftalDesc& d, const Camera& cam, const glm::dvec3& posit
     return graftal_lambda(d.lambda, sigma, rho, tau);
 }
 
-// Each tuft's state at `lod_view`, its λ replayed along the track up to it, tufts in parallel.
+// Each tuft's state at the last frame of `path`, its λ replayed along it, tufts in parallel.
 std::vector<TuftState> tuft_states(const Shot& shot, const ShotGraftals& g,
                                    const std::vector<FrameView>& path) {
     const GraftalDesc& d = *g.desc;
@@ -95,11 +98,14 @@ std::vector<std::vector<float>> difference_placement(const Shot& shot, const Cam
         if (!first) first = g.desc.get();
     }
     if (!first) return placed;
-    // One desire image for every such group (the first one's cell, dot and threshold), so a
-    // nearer crown's tufts take the desire before a farther one's behind it.
+    // One image of dots for every such group (the first one's cell, dot and threshold), so
+    // tufts of crowns overlapping on screen space each other out; it covers the frame and a
+    // margin of a quarter of its larger side, where tufts standing outside reach in.
     const int cell = std::max(first->cell_px, 1);
+    const int margin = (std::max(cam.width, cam.height) / 4 + cell - 1) / cell * cell;
     DesireImage img;
-    img.width = (cam.width + cell - 1) / cell, img.height = (cam.height + cell - 1) / cell;
+    img.width = (cam.width + 2 * margin + cell - 1) / cell;
+    img.height = (cam.height + 2 * margin + cell - 1) / cell;
     const size_t cells = static_cast<size_t>(img.width) * img.height;
     img.desire.assign(cells, 0.0f);
     img.id.assign(cells, 0u);
@@ -115,16 +121,17 @@ std::vector<std::vector<float>> difference_placement(const Shot& shot, const Cam
         for (size_t s = 0; s < g.sites.size(); ++s) {
             const GraftalSite& site = g.sites[s];
             const Projection p = project(cam, site.position);
-            if (!p.in_front || !(p.x >= 0) || !(p.y >= 0) || !(p.x < cam.width) ||
-                !(p.y < cam.height))
+            // In the frame or its margin: a tuft standing just outside still reaches in.
+            const double px = p.x + margin, py = p.y + margin;
+            if (!p.in_front || !(px >= 0) || !(py >= 0) || !(px < img.width * double(cell)) ||
+                !(py < img.height * double(cell)))
                 continue;
-            const int cx = std::min(static_cast<int>(p.x) / cell, img.width - 1);
-            const int cy = std::min(static_cast<int>(p.y) / cell, img.height - 1);
+            const int cx = std::min(static_cast<int>(px) / cell, img.width - 1);
+            const int cy = std::min(static_cast<int>(py) / cell, img.height - 1);
             const size_t c = static_cast<size_t>(cy) * img.width + cx;
             // Desire where detail is wanted: the description's ρ (file 004's N.V).
             const glm::vec3 v(safe_normalize(cam.eye - site.position, -cam.forward));
             const float rho = graftal_rho(g.desc->rho, site.normal, v);
-            img.desire[c] = std::max(img.desire[c], rho);
             // The nearest candidate of each cell, and the nearest of any other object.
             if (p.depth < nearest[c]) {
                 if (img.id[c] != site.object) other[c] = nearest[c];
@@ -134,8 +141,8 @@ std::vector<std::vector<float>> difference_placement(const Shot& shot, const Cam
             }
             // Its own desire, exactly where it stands: it changes smoothly as the view moves,
             // where the image's cell values jump as candidates cross cells.
-            candidates.push_back({glm::vec2(p.x / float(cell), p.y / float(cell)), site.object,
-                                  (uint64_t(site.object) << 40) ^ site.key, rho});
+            candidates.push_back({glm::vec2(float(px / cell), float(py / cell)), site.object,
+                                  mix64(site.object) ^ site.key, rho});
             depth.push_back(p.depth), cell_of.push_back(c);
             from.emplace_back(static_cast<uint32_t>(gi), static_cast<uint32_t>(s));
         }
@@ -307,6 +314,10 @@ GraftalStageReport add_graftal_sprites(const Shot& shot, const FrameView& view,
         sp.x = patch.x0 + 0.5f * patch.width, sp.y = patch.y0 + 0.5f * patch.height;
         sp.half_l = 0.5f * patch.width, sp.half_w = 0.5f * patch.height;
         sp.ax = 1, sp.ay = 0;
+        // As for strokes (sprites.cpp): how fast its distance can cross an overlapping sprite's
+        // while the eye moves, so graftals too change order softly (composite.cpp).
+        sp.swap_speed =
+            static_cast<float>(view.eye_speed * pmath::hypot(sp.half_w, sp.half_l) / cam.focal_px);
         sp.depth = project(cam, inst.position).depth;
         sp.range = static_cast<float>(glm::length(cam.eye - inst.position));
         sp.object_id = inst.object;

@@ -1,7 +1,7 @@
 // The graftals stage of a frame (file 000): each tuft's level chosen from its λ, filtered and
-// switched with hysteresis along the camera track replayed from its first frame, its graftals
-// posed (σ, ρ, τ, λ) and drawn into patches, each patch a sprite that composites with the
-// strokes in depth order.
+// switched with hysteresis along the camera track replayed from its first frame (and, placed by
+// the difference image, whether and how strongly it is placed), its graftals posed (σ, ρ, τ, λ)
+// and drawn into patches, each patch a sprite that composites with the strokes in depth order.
 #pragma once
 
 #include <cstdint>
@@ -43,11 +43,12 @@ GraftalStageReport add_graftal_sprites(const Shot& shot, const FrameView& view,
 
 // The tufts the difference image places in a frame seen by `cam` (file 004): per group, one
 // weight per site for the groups placed that way (0: not placed; below 1: fading, within `band`
-// of the threshold), empty for the others. The candidates are the
-// groups' sites on screen; the desire image, at the first such description's cell_px, holds
-// the largest ρ of the candidates in each cell and the ID image the nearest one's object; the
-// candidates are tried in the order of a hash of their keys, the same in every frame, so the
-// same ones win while the view changes a little, with no history (graftal_placement.h).
+// of the threshold), empty for the others. The candidates are the groups' sites in the frame or
+// a margin around it; each wants its own ρ (file 004's N.V), less where another object's
+// candidate lies nearer in its cell (occlusion), less the dots of those placed before it, laid
+// between the cells of an image at the first such description's cell_px. They are tried in the
+// order of a hash of their keys, the same in every frame, so the same ones win while the view
+// changes a little, with no history (graftal_placement.h).
 std::vector<std::vector<float>> difference_placement(const Shot& shot, const Camera& cam);
 
 // For the coherence bench: each graftal's presence at `view` (its τ times its placement's

@@ -224,8 +224,8 @@ bool apply_lod(const SpriteContext& c, size_t item, size_t j, SpriteInput& in, R
     return true;
 }
 
-// Leaves of a graftal-styled family and strokes of a graftal-styled material: the graftals
-// stage draws those crowns and surfaces (graftal_stage.h).
+}  // namespace
+
 bool drawn_as_graftals(const Shot& shot, size_t item, SpriteKind kind, size_t j) {
     const std::vector<BuiltTree>& trees = *shot.trees;
     if (kind == SpriteKind::kLeaf)
@@ -235,6 +235,8 @@ bool drawn_as_graftals(const Shot& shot, size_t item, SpriteKind kind, size_t j)
                nullptr;
     return false;
 }
+
+namespace {
 
 // Counters summed over threads: one shared atomic, bumped for every ray, bounces between cores.
 struct Counters {

@@ -99,4 +99,8 @@ struct SpriteStageInput {
 
 SpriteSet make_sprites(const SpriteStageInput& input);
 
+// Leaves of a graftal-styled family and strokes of a graftal-styled material: no sprite, the
+// graftals stage draws those crowns and surfaces (graftal_stage.h).
+bool drawn_as_graftals(const Shot& shot, size_t item, SpriteKind kind, size_t particle);
+
 }  // namespace pleinair

@@ -168,22 +168,33 @@ TEST(GraftalStage, TheDifferenceImagePlacesWhereDesiredAndKeepsItsChoiceAsTheVie
     std::vector<std::pair<size_t, size_t>> both;
     std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(both));
     const double jaccard = double(both.size()) / double(a.size() + b.size() - both.size());
-    // Measured 0.78 here (1.9 px of motion); 0.48 when the candidates read the image's cells.
+    // Measured 0.83 here (1.9 px of motion); 0.48 when the candidates read the image's cells.
     EXPECT_GT(jaccard, 0.7) << both.size() << " of " << a.size() << " and " << b.size();
     // Soft placement: weights move smoothly. Fewer tufts change weight by more than a third in
-    // a frame (a pop to the coherence bench) than placed whole (band 0): measured 30 against 70
-    // here; what is left comes from occlusion (a crown passing in front) and the frame's edges.
+    // a frame (a pop to the coherence bench) than placed whole (band 0), over eight frame
+    // pairs; what is left comes from occlusion (a crown passing in front) and chains in the
+    // fixed order.
     auto pops = [&](const Shot& sh) {
-        const Camera c0 = view_at(sh.scene, frame_time(60, sh.scene.fps)).camera;
-        const Camera c1 = view_at(sh.scene, frame_time(61, sh.scene.fps)).camera;
-        const auto w0 = difference_placement(sh, c0), w1 = difference_placement(sh, c1);
+        // On screen in both frames, as the coherence bench counts them.
+        auto on = [&](const Camera& c, const glm::dvec3& w) {
+            const Projection p = project(c, w);
+            return p.in_front && p.x >= 0 && p.y >= 0 && p.x < c.width && p.y < c.height;
+        };
         size_t n = 0;
-        for (size_t g = 0; g < w0.size(); ++g)
-            for (size_t s = 0; s < w0[g].size(); ++s) n += std::abs(w0[g][s] - w1[g][s]) > 1.0f / 3;
+        for (int f = 20; f <= 160; f += 20) {
+            const Camera c0 = view_at(sh.scene, frame_time(f, sh.scene.fps)).camera;
+            const Camera c1 = view_at(sh.scene, frame_time(f + 1, sh.scene.fps)).camera;
+            const auto w0 = difference_placement(sh, c0), w1 = difference_placement(sh, c1);
+            for (size_t g = 0; g < w0.size(); ++g)
+                for (size_t s = 0; s < w0[g].size(); ++s) {
+                    const glm::dvec3& w = sh.graftals[g].sites[s].position;
+                    if (on(c0, w) && on(c1, w)) n += std::abs(w0[g][s] - w1[g][s]) > 1.0f / 3;
+                }
+        }
         return n;
     };
     const size_t soft = pops(shot), hard = pops(difference_shot(480, GraftalRho::kSilhouette, 0));
-    EXPECT_LT(soft * 2, hard) << soft << " vs " << hard;
+    EXPECT_LT(soft * 4, hard * 3) << soft << " vs " << hard;
 }
 
 }  // namespace
