@@ -154,10 +154,15 @@ void draw_scanline(const std::vector<Shape>& shapes, GraftalPatch& patch) {
 
 }  // namespace
 
-glm::dvec3 graftal_point(const GraftalAxes& axes, const GraftalInstance& g, const glm::vec3& p,
+GraftalTurn graftal_turn(const GraftalInstance& g) {
+    GraftalTurn t;
+    pmath::sincos(double(g.angle) * (3.14159265358979323846 / 180.0), t.s, t.c);
+    return t;
+}
+
+glm::dvec3 graftal_point(const GraftalAxes& axes, const GraftalTurn& turn, const glm::vec3& p,
                          float width_scale, float length_scale) {
-    double s, c;
-    pmath::sincos(double(g.angle) * (3.14159265358979323846 / 180.0), s, c);
+    const double s = turn.s, c = turn.c;
     const double x = double(p.x) * width_scale, y = double(p.y) * length_scale,
                  z = double(p.z) * width_scale;
     // Turned about the normal (y): x towards z by the angle.
@@ -172,6 +177,7 @@ GraftalPatch draw_graftal(const GraftalDesc& desc, const GraftalInstance& g, con
     const GraftalExample& ex = desc.examples[g.example];
     const glm::vec3 v(safe_normalize(cam.eye - g.position, -cam.forward));
     const GraftalAxes axes = graftal_axes(desc.frame, g.normal, v, glm::vec3(1, 0, 0));
+    const GraftalTurn turn = graftal_turn(g);  // once per graftal, not per vertex
     const float tau = std::min(pose.tau, 1.0f);
     const double length =
         double(g.length) * (desc.tuft.grow_from + (1 - desc.tuft.grow_from) * tau);
@@ -192,7 +198,7 @@ GraftalPatch draw_graftal(const GraftalDesc& desc, const GraftalInstance& g, con
         for (uint32_t i : prim.vertices) {
             if (i >= ex.vertices.size()) return {};
             const glm::dvec3 w =
-                g.position + length * graftal_point(axes, g, ex.vertices[i], wscale, lscale);
+                g.position + length * graftal_point(axes, turn, ex.vertices[i], wscale, lscale);
             const Projection p = project(cam, w);
             if (!p.in_front || !(p.depth > cam.near_depth) || !std::isfinite(p.x) ||
                 !std::isfinite(p.y))

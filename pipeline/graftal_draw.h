@@ -41,9 +41,16 @@ GraftalPatch draw_graftal(const GraftalDesc& desc, const GraftalInstance& g, con
                           const GraftalPose& pose, int max_px = 2048,
                           GraftalRaster raster = GraftalRaster::kScanline);
 
-// The local frame's rotation of `g` about its normal, applied to an example's axes: where its
-// canonical point (x, y, z) goes in the world, before the growth scale.
-glm::dvec3 graftal_point(const GraftalAxes& axes, const GraftalInstance& g, const glm::vec3& p,
+// A graftal's turn about its normal (its variation's angle), as a sine and cosine: worked out
+// once per graftal, then applied to each of its points.
+struct GraftalTurn {
+    double s = 0, c = 1;
+};
+GraftalTurn graftal_turn(const GraftalInstance& g);
+
+// Where an example's canonical point (x, y, z) goes in the world, relative to the graftal's base
+// and before the growth scale: turned about the normal, then carried by the local frame's axes.
+glm::dvec3 graftal_point(const GraftalAxes& axes, const GraftalTurn& turn, const glm::vec3& p,
                          float width_scale, float length_scale);
 
 }  // namespace pleinair
