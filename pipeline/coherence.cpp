@@ -9,6 +9,7 @@
 
 #include "pipeline/camera_track.h"
 #include "pipeline/graftal_stage.h"
+#include "pipeline/imposter_stage.h"
 #include "pipeline/lod.h"
 #include "pipeline/paint.h"
 #include "shading/color.h"
@@ -152,6 +153,9 @@ std::vector<float> presences(const Shot& shot, const FrameView& view, const Rend
     // Graftals: their τ, a level growing in or fading out (graftal_stage.h).
     const std::vector<float> g = graftal_presences(shot, view);
     all.insert(all.end(), g.begin(), g.end());
+    // Imposters: each edge's weight at or near the silhouette (imposter_stage.h).
+    const std::vector<float> im = imposter_presences(shot, view);
+    all.insert(all.end(), im.begin(), im.end());
     return all;
 }
 
@@ -164,6 +168,8 @@ std::vector<uint64_t> particle_keys(const Shot& shot) {
         });
     const std::vector<uint64_t> g = graftal_keys(shot);
     keys.insert(keys.end(), g.begin(), g.end());
+    const std::vector<uint64_t> im = imposter_keys(shot);
+    keys.insert(keys.end(), im.begin(), im.end());
     return keys;
 }
 

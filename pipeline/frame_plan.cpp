@@ -80,6 +80,11 @@ FramePlan plan_frame(const Shot& shot, const FrameSettings& settings) {
         plan.graftals ? "some family or material is drawn in a graftal style: tufts' levels "
                         "from λ, graftals drawn into patches and composited with the strokes"
                       : "every family and material is painted with strokes");
+    plan.imposters = !shot.imposters.empty();
+    add("imposters", plan.imposters,
+        plan.imposters ? "some family or material carries graftal imposters: silhouette edges "
+                         "found, extruded and drawn from the atlas"
+                       : "no family or material names imposters");
     plan.bare_blend = settings.bare_blend;
     plan.trace = settings.trace;
     plan.noise_reseed = settings.noise_reseed;

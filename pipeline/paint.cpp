@@ -10,6 +10,7 @@
 #include "pipeline/bin.h"
 #include "pipeline/composite.h"
 #include "pipeline/graftal_stage.h"
+#include "pipeline/imposter_stage.h"
 #include "pipeline/sprites.h"
 
 namespace pleinair {
@@ -171,6 +172,19 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
              std::to_string(g.tufts) + " tufts (per level: " + levels + "), " +
                  std::to_string(g.drawn) + " graftals drawn (" + std::to_string(g.growing) +
                  " growing or fading), " + std::to_string(g.pixels) + " patch pixels"});
+    }
+    if (plan.imposters) {
+        PassTimer ti;
+        const ImposterStageReport im = add_imposter_sprites(shot, view, sprites, &seen);
+        rep.imposter_sprites = im.drawn;
+        rep.passes.push_back(
+            {"imposters", true,
+             "silhouette edges (and edges turning towards one) of " + std::to_string(im.objects) +
+                 " meshes extruded along the vector field, drawn from the atlas and keyed",
+             ti.ms(),
+             std::to_string(im.candidates) + " edges the control allows, " +
+                 std::to_string(im.hidden) + " hidden, " + std::to_string(im.drawn) +
+                 " imposters drawn, " + std::to_string(im.pixels) + " patch pixels"});
     }
     t = PassTimer();
     const std::vector<uint32_t> order = depth_order(sprites.sprites);

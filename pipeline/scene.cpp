@@ -8,6 +8,7 @@
 
 #include "generators/rng.h"
 #include "pipeline/graftal_io.h"
+#include "pipeline/imposter_io.h"
 #include "pipeline/json_visitors.h"
 #include "pipeline/limits.h"
 #include "pipeline/presets.h"
@@ -408,6 +409,21 @@ std::shared_ptr<const GraftalDesc> load_style(const std::string& style, const st
     return out;
 }
 
+// Graftal imposters on a family's limbs or a material's surfaces: none (""), or a description
+// by name or file.
+std::shared_ptr<const ImposterDesc> load_imposters(const std::string& name,
+                                                   const std::string& source,
+                                                   const std::string& ptr,
+                                                   std::vector<Problem>& problems) {
+    if (name.empty()) return nullptr;
+    std::shared_ptr<const ImposterDesc> out;
+    load_into(problems, source, ptr, [&] {
+        out = std::make_shared<const ImposterDesc>(
+            load_imposter(near_scene(name, source), source, ptr));
+    });
+    return out;
+}
+
 // Index of the material called `name`, or a problem at `ptr` naming those there are.
 int32_t find_material(const SceneDesc& s, const std::string& name, const std::string& ptr,
                       std::vector<Problem>& problems) {
@@ -441,9 +457,12 @@ void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
                 r.text("shader", shader, "");
                 r.text("palette", palette, "");
                 r.text("style", mat.style, "");
+                r.text("imposters", mat.imposters_name, "");
                 r.finish();
                 mat.name = name;
                 mat.graftal = load_style(mat.style, source, ptr + "/style", problems);
+                mat.imposters =
+                    load_imposters(mat.imposters_name, source, ptr + "/imposters", problems);
                 if (shader.empty()) {
                     problems.push_back({ptr + "/shader", "missing: a shader preset name or file"});
                     s.materials.push_back(std::move(mat));
@@ -703,8 +722,11 @@ void parse_families(const json& doc, const std::string& source, SceneDesc& s,
             r.text("leaf_palette", leaf_palette, "");
             r.text("bark_palette", bark_palette, "");
             r.text("style", family.style, "");
+            r.text("imposters", family.imposters_name, "");
             r.finish();
             family.graftal = load_style(family.style, source, ptr + "/style", problems);
+            family.imposters =
+                load_imposters(family.imposters_name, source, ptr + "/imposters", problems);
             if (family.preset.empty()) {
                 problems.push_back({ptr + "/preset", "missing: a tree preset name or file"});
                 continue;

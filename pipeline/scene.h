@@ -24,6 +24,8 @@
 
 namespace pleinair {
 
+struct ImposterDesc;  // imposter.h
+
 // Sky and ground as seen from the camera: a gradient by elevation, broken by slow noise so no
 // area reads as flat CG. With `canvas` set, one canvas colour instead.
 struct Background {
@@ -54,6 +56,9 @@ struct Material {
     // tufts on its surfaces instead, over the underpainting's flat colour.
     std::shared_ptr<const GraftalDesc> graftal;
     std::string style = "strokes";  // as written in the scene
+    // Graftal imposters (file 002) on the silhouettes of its rocks and terrain, or null.
+    std::shared_ptr<const ImposterDesc> imposters;
+    std::string imposters_name;  // as written
 };
 
 // A disc of the terrain painted with its own material (a meadow, a sandy path, a patch of
@@ -117,6 +122,9 @@ struct Family {
     // the leaf particles instead (bark stays strokes).
     std::shared_ptr<const GraftalDesc> graftal;
     std::string style = "strokes";
+    // Graftal imposters (file 002) on the silhouettes of its trunks and branches, or null.
+    std::shared_ptr<const ImposterDesc> imposters;
+    std::string imposters_name;  // as written
 };
 
 struct PlacedTree {

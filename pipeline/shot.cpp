@@ -242,6 +242,21 @@ Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> t
              std::to_string(tufts) + " tufts of " + std::to_string(graftals) + " graftals in " +
                  std::to_string(shot.graftals.size()) + " groups"});
     }
+    if (std::any_of(shot.scene.families.begin(), shot.scene.families.end(),
+                    [](const Family& f) { return f.imposters != nullptr; }) ||
+        std::any_of(shot.scene.materials.begin(), shot.scene.materials.end(),
+                    [](const Material& m) { return m.imposters != nullptr; })) {
+        PassTimer timer;
+        shot.imposters = build_imposters(shot);
+        size_t edges = 0;
+        for (const ImposterObject& o : shot.imposters) edges += o.edges.size();
+        shot.passes.push_back({"imposters", true,
+                               "edges, control rows, colours and directions of the meshes that "
+                               "carry graftal imposters",
+                               timer.ms(),
+                               std::to_string(shot.imposters.size()) + " meshes, " +
+                                   std::to_string(edges) + " edges"});
+    }
 
     const ShotPlan& plan = shot.plan;
     const bool still_sun = plan.shadows && !plan.sun_moves;

@@ -10,6 +10,7 @@
 #include "generators/bark.h"
 #include "generators/tree.h"
 #include "pipeline/graftal_instances.h"
+#include "pipeline/imposter_stage.h"
 #include "pipeline/landscape.h"
 #include "pipeline/materials.h"
 #include "pipeline/rays.h"
@@ -117,6 +118,9 @@ struct Shot {
     // leaf and surface strokes are not painted. Graftal sprites' items count on from
     // item_count().
     std::vector<ShotGraftals> graftals;
+    // The meshes that carry graftal imposters on their silhouettes (imposter_stage.h); their
+    // sprites' items count on after the graftals'.
+    std::vector<ImposterObject> imposters;
 
     std::vector<PassReport> passes;  // what the build did, for --explain
 

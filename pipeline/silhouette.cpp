@@ -1,4 +1,4 @@
-// Silhouette edges by the sign of N·V on either side of each edge.
+// Silhouette edges by the sign of N·V on either side of each edge, from an edge list built once.
 #include "pipeline/silhouette.h"
 
 #include <algorithm>
@@ -6,9 +6,9 @@
 
 namespace pleinair {
 
-std::vector<SilhouetteEdge> silhouette_edges(const QuadMesh& mesh, const glm::dvec3& eye) {
+std::vector<glm::dvec3> face_normals(const QuadMesh& mesh) {
     const size_t nv = mesh.positions.size();
-    std::vector<glm::dvec3> normal(mesh.quads.size());
+    std::vector<glm::dvec3> normal(mesh.quads.size(), glm::dvec3(0.0));
     for (size_t f = 0; f < mesh.quads.size(); ++f) {
         const glm::uvec4& q = mesh.quads[f];
         if (q.x >= nv || q.y >= nv || q.z >= nv || q.w >= nv) continue;  // left at 0: edge-on
@@ -16,6 +16,11 @@ std::vector<SilhouetteEdge> silhouette_edges(const QuadMesh& mesh, const glm::dv
         const glm::dvec3 d2 = glm::dvec3(mesh.positions[q.w]) - glm::dvec3(mesh.positions[q.y]);
         normal[f] = glm::cross(d1, d2);
     }
+    return normal;
+}
+
+std::vector<MeshEdge> mesh_edges(const QuadMesh& mesh) {
+    const size_t nv = mesh.positions.size();
     // Directed edges (from, to, face), sorted so an edge's reverse is found by search.
     struct Half {
         uint32_t from, to, face;
@@ -25,37 +30,59 @@ std::vector<SilhouetteEdge> silhouette_edges(const QuadMesh& mesh, const glm::dv
     for (uint32_t f = 0; f < mesh.quads.size(); ++f)
         for (int c = 0; c < 4; ++c) {
             const uint32_t a = mesh.quads[f][c], b = mesh.quads[f][(c + 1) % 4];
-            if (a < nv && b < nv) half.push_back({a, b, f});
+            if (a < nv && b < nv && a != b) half.push_back({a, b, f});
         }
     auto less = [](const Half& x, const Half& y) {
         return x.from != y.from ? x.from < y.from : x.to != y.to ? x.to < y.to : x.face < y.face;
     };
     std::sort(half.begin(), half.end(), less);
-    auto facing = [&](uint32_t face, uint32_t a, uint32_t b) {
-        const glm::dvec3 mid =
-            0.5 * (glm::dvec3(mesh.positions[a]) + glm::dvec3(mesh.positions[b]));
-        return glm::dot(normal[face], eye - mid);
-    };
-    std::vector<SilhouetteEdge> out;
+    std::vector<MeshEdge> out;
+    out.reserve(half.size() / 2 + 1);
     for (const Half& h : half) {
-        const double here = facing(h.face, h.from, h.to);
         auto it = std::lower_bound(half.begin(), half.end(), Half{h.to, h.from, 0}, less);
         const bool has_twin = it != half.end() && it->from == h.to && it->to == h.from;
+        // Once per edge: a border from its one face; a shared edge from the smaller-numbered
+        // vertex's side (ties within one pair by face, so a repeated directed edge is kept once).
         if (!has_twin) {
-            if (here > 0) out.push_back({h.from, h.to, h.face});  // a border of a front face
+            out.push_back({h.from, h.to, h.face, MeshEdge::kBorder});
+        } else if (h.from < h.to) {
+            out.push_back({h.from, h.to, h.face, it->face});
+        }
+    }
+    return out;
+}
+
+std::vector<SilhouetteEdge> silhouette_edges(const QuadMesh& mesh,
+                                             const std::vector<MeshEdge>& edges,
+                                             const std::vector<glm::dvec3>& normal,
+                                             const glm::dvec3& eye) {
+    std::vector<SilhouetteEdge> out;
+    for (const MeshEdge& e : edges) {
+        const glm::dvec3 mid =
+            0.5 * (glm::dvec3(mesh.positions[e.a]) + glm::dvec3(mesh.positions[e.b]));
+        const double here = glm::dot(normal[e.face0], eye - mid);
+        if (e.face1 == MeshEdge::kBorder) {
+            if (here > 0) out.push_back({e.a, e.b, e.face0});  // a border of a front face
             continue;
         }
-        const double there = facing(it->face, h.from, h.to);
+        const double there = glm::dot(normal[e.face1], eye - mid);
         if (here * there > 0) continue;
-        // Once per edge: from the side that faces the eye (the first of the two when both are
-        // edge-on or both face it, by face index).
-        const bool mine = here > there || (here == there && h.face < it->face);
-        if (mine) out.push_back({h.from, h.to, h.face});
+        // From the side that faces the eye (the first of the two by face index when both are
+        // edge-on), in the order that face runs it.
+        const bool first = here > there || (here == there && e.face0 < e.face1);
+        if (first)
+            out.push_back({e.a, e.b, e.face0});
+        else
+            out.push_back({e.b, e.a, e.face1});
     }
     std::sort(out.begin(), out.end(), [](const SilhouetteEdge& x, const SilhouetteEdge& y) {
         return x.a != y.a ? x.a < y.a : x.b < y.b;
     });
     return out;
+}
+
+std::vector<SilhouetteEdge> silhouette_edges(const QuadMesh& mesh, const glm::dvec3& eye) {
+    return silhouette_edges(mesh, mesh_edges(mesh), face_normals(mesh), eye);
 }
 
 }  // namespace pleinair

@@ -14,6 +14,7 @@
 #include "pipeline/family.h"
 #include "pipeline/graftal_io.h"
 #include "pipeline/image_io.h"
+#include "pipeline/imposter_io.h"
 #include "pipeline/json_params.h"
 #include "pipeline/limits.h"
 #include "pipeline/presets.h"
@@ -195,10 +196,11 @@ int run_family(const FamilyCommand& cmd) {
 
 int run_presets(const PresetsCommand& cmd) {
     if (!cmd.reference.empty()) {
-        std::cout << (cmd.reference == "trees"      ? tree_params_reference()
-                      : cmd.reference == "shaders"  ? stroke_shader_reference()
-                      : cmd.reference == "graftals" ? graftal_reference()
-                                                    : scene_reference());
+        std::cout << (cmd.reference == "trees"       ? tree_params_reference()
+                      : cmd.reference == "shaders"   ? stroke_shader_reference()
+                      : cmd.reference == "graftals"  ? graftal_reference()
+                      : cmd.reference == "imposters" ? imposter_reference()
+                                                     : scene_reference());
         return 0;
     }
     for (const auto& p : list_tree_presets())
@@ -210,6 +212,8 @@ int run_presets(const PresetsCommand& cmd) {
         std::printf("palette  %-22s %s\n", name.c_str(), load_palette(name).description.c_str());
     for (const auto& name : preset_names("graftals"))
         std::printf("graftal  %-22s %s\n", name.c_str(), load_graftal(name).description.c_str());
+    for (const auto& name : preset_names("imposters"))
+        std::printf("imposter %-22s %s\n", name.c_str(), load_imposter(name).description.c_str());
     for (const auto& name : preset_names("scenes")) {
         auto file = resolve_preset("scenes", name, "presets");
         std::printf("scene    %-22s %s\n", name.c_str(), load_scene(file).description.c_str());

@@ -216,7 +216,7 @@ Command add_presets(CLI::App& app) {
     CLI::App* p = app.add_subcommand("presets", "List the shipped presets, one line each");
     p->add_option("--reference", c->reference,
                   "Print the Markdown reference of every key of one kind of file")
-        ->check(CLI::IsMember({"trees", "shaders", "scenes", "graftals"}));
+        ->check(CLI::IsMember({"trees", "shaders", "scenes", "graftals", "imposters"}));
 
     return {p, [=] { return run_presets(*c); }};
 }

@@ -1,7 +1,9 @@
 // What graftals cost: one graftal drawn by Cairo and by pleinair's scanline coverage (per
 // shipped description, at about 40 pixels), the graftals stage of a frame (tufts replayed along
 // the track, posed and drawn), and whole frames of the same scenes painted in strokes and in
-// graftals by either rasteriser, at 960 x 540 on all cores.
+// graftals by either rasteriser, at 960 x 540 on all cores; and graftal imposters (file 002): one
+// imposter drawn at three sizes on screen, the imposters stage of a frame, and the truffula frame
+// with and without them.
 // Figures: BENCHMARKS.md ("Graftals").
 #include <benchmark/benchmark.h>
 
@@ -10,6 +12,8 @@
 #include "pipeline/graftal_draw.h"
 #include "pipeline/graftal_io.h"
 #include "pipeline/graftal_stage.h"
+#include "pipeline/imposter_io.h"
+#include "pipeline/imposter_stage.h"
 #include "pipeline/paint.h"
 #include "pipeline/presets.h"
 #include "pipeline/shot.h"
@@ -84,10 +88,17 @@ const Pair kFrames[] = {
      {"/render/graftal_raster=\"cairo\""}},
     {"truffula strokes",
      "truffula",
-     {"/families/truffula/style=\"strokes\"", "/materials/turf/style=\"strokes\""}},
-    {"truffula graftals, cairo", "truffula", {"/render/graftal_raster=\"cairo\""}},
+     {"/families/truffula/style=\"strokes\"", "/materials/turf/style=\"strokes\"",
+      "/families/truffula/imposters=\"\"", "/materials/turf/imposters=\"\""}},
+    {"truffula graftals, cairo",
+     "truffula",
+     {"/render/graftal_raster=\"cairo\"", "/families/truffula/imposters=\"\"",
+      "/materials/turf/imposters=\"\""}},
     {"mortefontaine graftals, scanline", "mortefontaine-graftals", {}},
-    {"truffula graftals, scanline", "truffula", {}},
+    {"truffula graftals, scanline",
+     "truffula",
+     {"/families/truffula/imposters=\"\"", "/materials/turf/imposters=\"\""}},
+    {"truffula graftals and imposters (as shipped)", "truffula", {}},
 };
 
 void BM_Frame(benchmark::State& state) {
@@ -103,8 +114,58 @@ void BM_Frame(benchmark::State& state) {
     state.counters["leaf_strokes"] = double(rep.leaf_sprites);
     state.counters["surface_strokes"] = double(rep.surface_sprites);
     state.counters["graftals"] = double(rep.graftal_sprites);
+    state.counters["imposters"] = double(rep.imposter_sprites);
 }
-BENCHMARK(BM_Frame)->DenseRange(0, 5)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Frame)->DenseRange(0, 6)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// One seuss-fringe imposter facing a 960 x 540 camera, its quad `state.range(0)` pixels a side:
+// the quad inverted into its cell at 2 x 2 samples a pixel, two atlas levels read, keyed.
+void BM_ImposterDraw(benchmark::State& state) {
+    const ImposterDesc d = load_imposter("seuss-fringe");
+    CameraParams cp;
+    cp.position = {0, 0, 10};
+    cp.look_at = {0, 0, 0};
+    cp.width = 960, cp.height = 540;
+    Camera cam;
+    make_camera(cp, cam);
+    const double half = 0.5 * double(state.range(0)) * 10.0 / cam.focal_px;
+    ImposterQuad q;
+    q.v0 = {-half, -half, 0}, q.v1 = {half, -half, 0}, q.t0 = {-half, half, 0},
+    q.t1 = {half, half, 0};
+    q.color0 = {0.4f, 0.3f, 0.1f}, q.color1 = {0.5f, 0.4f, 0.2f};
+    size_t pixels = 0;
+    int column = 0;
+    for (auto _ : state) {
+        q.column = column++ % d.atlas->columns;
+        const GraftalPatch p = draw_imposter(*d.atlas, q, cam);
+        pixels = p.pixels.size();
+        benchmark::DoNotOptimize(p.pixels.data());
+    }
+    state.counters["pixels"] = double(pixels);
+    state.SetItemsProcessed(int64_t(state.iterations()));
+}
+BENCHMARK(BM_ImposterDraw)->Arg(8)->Arg(32)->Arg(128)->Unit(benchmark::kMicrosecond);
+
+// The imposters stage alone on the truffula still: every mesh's silhouette and the edges near it,
+// occlusion rays, drawing.
+void BM_ImposterStage(benchmark::State& state) {
+    const Shot shot = build_shot(scene("truffula"));
+    const FrameView view = still_view(shot.scene);
+    ImposterStageReport r;
+    for (auto _ : state) {
+        SpriteSet sprites;
+        r = add_imposter_sprites(shot, view, sprites);
+        benchmark::DoNotOptimize(sprites.sprites.data());
+    }
+    state.counters["edges"] = 0;
+    for (const ImposterObject& o : shot.imposters)
+        state.counters["edges"] += double(o.edges.size());
+    state.counters["candidates"] = double(r.candidates);
+    state.counters["imposters"] = double(r.drawn);
+    state.counters["pixels"] = double(r.pixels);
+    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(r.drawn));
+}
+BENCHMARK(BM_ImposterStage)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -6,6 +6,8 @@
 
 #include "generators/tree.h"
 #include "pipeline/error.h"
+#include "pipeline/graftal_io.h"
+#include "pipeline/imposter_io.h"
 #include "pipeline/json_params.h"
 #include "pipeline/scene.h"
 #include "pipeline/shader_io.h"
@@ -276,8 +278,8 @@ TEST(Presets, SavedPresetLoadsBackToTheSameTree) {
 
 TEST(Presets, ReadmeReferenceMatchesTheKeyTable) {
     std::string readme = test::read_file(test::source_dir() / "README.md");
-    for (const std::string& table :
-         {tree_params_reference(), stroke_shader_reference(), scene_reference()})
+    for (const std::string& table : {tree_params_reference(), stroke_shader_reference(),
+                                     scene_reference(), graftal_reference(), imposter_reference()})
         EXPECT_NE(readme.find(table), std::string::npos)
             << "README.md's key reference is stale; regenerate it with `make reference`";
 }
