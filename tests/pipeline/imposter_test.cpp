@@ -135,6 +135,50 @@ TEST(ImposterDraw, AQuadFacingTheCameraCoversItsArea) {
     EXPECT_TRUE(draw_imposter(opaque_atlas(), behind, cam).empty());
 }
 
+double shoelace(const Camera& cam, const ImposterQuad& q) {
+    const glm::dvec3 w[4] = {q.v0, q.v1, q.t1, q.t0};
+    double a = 0;
+    for (int i = 0; i < 4; ++i) {
+        const Projection p = project(cam, w[i]), n = project(cam, w[(i + 1) % 4]);
+        a += double(p.x) * n.y - double(n.x) * p.y;
+    }
+    return std::abs(0.5 * a);
+}
+
+TEST(ImposterDraw, AQuadRecedingInDepthCoversItsTrapezoid) {
+    // Tips far behind the base: a trapezoid on screen, inverted bilinearly.
+    const Camera cam = front_camera(128, 6.4);
+    ImposterQuad q;
+    q.v0 = {-3, -2, 2}, q.v1 = {3, -2, 2}, q.t0 = {-3, 2, -6}, q.t1 = {3, 2, -6};
+    const GraftalPatch p = draw_imposter(opaque_atlas(), q, cam);
+    ASSERT_FALSE(p.empty());
+    double area = 0;
+    for (uint32_t px : p.pixels) area += alpha(px);
+    EXPECT_NEAR(area, shoelace(cam, q), 0.02 * shoelace(cam, q));
+}
+
+TEST(ImposterDraw, TurningEdgeOnItsInkFollowsItsAreaSmoothly) {
+    // A quad turned about its base through edge-on, a tenth of a degree at a time: thinner than
+    // a pixel it is widened and made fainter, so its ink is its area and never jumps.
+    const Camera cam = front_camera(64, 6.4);
+    double before = -1, steepest = 0;
+    for (int step = -100; step <= 100; ++step) {
+        const double a = (90.0 + step * 0.1) * M_PI / 180.0;  // 90: edge-on
+        ImposterQuad q;
+        q.v0 = {-2, 0, 0}, q.v1 = {2, 0, 0};
+        q.t0 = q.v0 + 2.0 * glm::dvec3(0, std::cos(a), std::sin(a));
+        q.t1 = q.v1 + 2.0 * glm::dvec3(0, std::cos(a), std::sin(a));
+        const GraftalPatch p = draw_imposter(opaque_atlas(), q, cam);
+        double ink = 0;
+        for (uint32_t px : p.pixels) ink += alpha(px);
+        const double area = shoelace(cam, q);
+        EXPECT_NEAR(ink, area, 0.15 * area + 2.0) << step;
+        if (before >= 0) steepest = std::max(steepest, std::abs(ink - before));
+        before = ink;
+    }
+    EXPECT_LT(steepest, 3.0);  // pixels of ink a step, on a quad 25 pixels long
+}
+
 TEST(ImposterDraw, TheCellRunsFromBaseToTipAndItsColourFromEndToEnd) {
     // The cell's top half (the tip's) opaque, its bottom half empty.
     ImposterImage img = solid(8, 8, glm::vec4(0.0f));
