@@ -66,8 +66,8 @@ struct FramePlan {
     bool fragment_shadows = false;  // a 4 x 4 grid of shadow rays per sprite
     bool underpaint = false;        // a visible mesh: flat colour under the strokes
     bool bare_blend = false;
-    bool lod = false;       // the camera carries distance circles and level_of_detail is on
-    bool graftals = false;  // some family or material is drawn in a graftal style
+    bool lod = false;        // the camera carries distance circles and level_of_detail is on
+    bool graftals = false;   // some family or material is drawn in a graftal style
     bool imposters = false;  // some family or material carries graftal imposters
     bool trace = false;
     uint32_t noise_reseed = 0;

@@ -154,6 +154,22 @@ void draw_scanline(const std::vector<Shape>& shapes, GraftalPatch& patch) {
 
 }  // namespace
 
+GraftalPatch patch_over(double lo_x, double lo_y, double hi_x, double hi_y, const Camera& cam,
+                        int max_px) {
+    // Missing the frame (or not a number): nothing, before any cast to int could overflow.
+    if (!(lo_x < cam.width && lo_y < cam.height && hi_x > 0 && hi_y > 0)) return {};
+    const int x0 = static_cast<int>(std::floor(std::max(lo_x, 0.0)));
+    const int y0 = static_cast<int>(std::floor(std::max(lo_y, 0.0)));
+    const int x1 = static_cast<int>(std::ceil(std::min(hi_x, double(cam.width))));
+    const int y1 = static_cast<int>(std::ceil(std::min(hi_y, double(cam.height))));
+    if (x1 <= x0 || y1 <= y0 || max_px < 1) return {};
+    GraftalPatch patch;
+    patch.x0 = x0, patch.y0 = y0;
+    patch.width = std::min(x1 - x0, max_px), patch.height = std::min(y1 - y0, max_px);
+    patch.pixels.assign(static_cast<size_t>(patch.width) * patch.height, 0u);
+    return patch;
+}
+
 GraftalTurn graftal_turn(const GraftalInstance& g) {
     GraftalTurn t;
     pmath::sincos(double(g.angle) * (3.14159265358979323846 / 180.0), t.s, t.c);
@@ -259,15 +275,9 @@ GraftalPatch draw_graftal(const GraftalDesc& desc, const GraftalInstance& g, con
     }
     if (shapes.empty() || !(hi_x > lo_x) || !(hi_y > lo_y)) return {};
     // The patch: the shapes' box, inside the frame and at most max_px a side.
-    const int x0 = static_cast<int>(std::floor(std::max(lo_x, 0.0)));
-    const int y0 = static_cast<int>(std::floor(std::max(lo_y, 0.0)));
-    const int x1 = static_cast<int>(std::ceil(std::min(hi_x, double(cam.width))));
-    const int y1 = static_cast<int>(std::ceil(std::min(hi_y, double(cam.height))));
-    if (x1 <= x0 || y1 <= y0) return {};
-    GraftalPatch patch;
-    patch.x0 = x0, patch.y0 = y0;
-    patch.width = std::min(x1 - x0, max_px), patch.height = std::min(y1 - y0, max_px);
-    patch.pixels.assign(static_cast<size_t>(patch.width) * patch.height, 0u);
+    GraftalPatch patch = patch_over(lo_x, lo_y, hi_x, hi_y, cam, max_px);
+    if (patch.empty()) return {};
+    const int x0 = patch.x0, y0 = patch.y0;
 
     if (raster == GraftalRaster::kScanline) {
         draw_scanline(shapes, patch);

@@ -25,6 +25,11 @@ struct GraftalPatch {
     bool empty() const { return pixels.empty(); }
 };
 
+// The patch over the frame's pixels that the box [lo_x, hi_x] x [lo_y, hi_y] touches, at most
+// max_px a side, its pixels cleared; empty when the box misses the frame.
+GraftalPatch patch_over(double lo_x, double lo_y, double hi_x, double hi_y, const Camera& cam,
+                        int max_px);
+
 // What the graftals stage decided for one graftal in this frame.
 struct GraftalPose {
     float lambda = 0;   // for its primitives' ramps

@@ -231,6 +231,20 @@ std::vector<ShotGraftals> build_graftals(const Shot& shot) {
     return out;
 }
 
+Sprite patch_sprite(const GraftalPatch& patch, const FrameView& view, const glm::dvec3& at) {
+    const Camera& cam = view.camera;
+    Sprite sp;
+    sp.kind = SpriteKind::kGraftal;
+    sp.x = patch.x0 + 0.5f * patch.width, sp.y = patch.y0 + 0.5f * patch.height;
+    sp.half_l = 0.5f * patch.width, sp.half_w = 0.5f * patch.height;
+    sp.ax = 1, sp.ay = 0;
+    sp.swap_speed =
+        static_cast<float>(view.eye_speed * pmath::hypot(sp.half_w, sp.half_l) / cam.focal_px);
+    sp.depth = project(cam, at).depth;
+    sp.range = static_cast<float>(glm::length(cam.eye - at));
+    return sp;
+}
+
 GraftalStageReport add_graftal_sprites(const Shot& shot, const FrameView& view,
                                        const RenderSettings& settings, SpriteSet& sprites,
                                        const FrameView* lod_view) {
@@ -308,18 +322,8 @@ GraftalStageReport add_graftal_sprites(const Shot& shot, const FrameView& view,
         const Draw& dr = draws[i];
         const ShotGraftals& g = shot.graftals[dr.group];
         const GraftalInstance& inst = g.instances[dr.instance];
-        Sprite sp;
-        sp.kind = SpriteKind::kGraftal;
+        Sprite sp = patch_sprite(patch, view, inst.position);
         sp.item = first_item + dr.group, sp.particle = dr.instance;
-        sp.x = patch.x0 + 0.5f * patch.width, sp.y = patch.y0 + 0.5f * patch.height;
-        sp.half_l = 0.5f * patch.width, sp.half_w = 0.5f * patch.height;
-        sp.ax = 1, sp.ay = 0;
-        // As for strokes (sprites.cpp): how fast its distance can cross an overlapping sprite's
-        // while the eye moves, so graftals too change order softly (composite.cpp).
-        sp.swap_speed =
-            static_cast<float>(view.eye_speed * pmath::hypot(sp.half_w, sp.half_l) / cam.focal_px);
-        sp.depth = project(cam, inst.position).depth;
-        sp.range = static_cast<float>(glm::length(cam.eye - inst.position));
         sp.object_id = inst.object;
         sp.fade = dr.pose.tau * dr.weight;
         sp.k.lightness = inst.lightness * dr.pose.shade;

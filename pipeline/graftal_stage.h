@@ -41,6 +41,12 @@ GraftalStageReport add_graftal_sprites(const Shot& shot, const FrameView& view,
                                        const RenderSettings& settings, SpriteSet& sprites,
                                        const FrameView* lod_view = nullptr);
 
+// A graftal's or imposter's patch as a sprite (kind kGraftal) of the frame seen from `view`,
+// standing at `at` in the world: its box, depth, range and swap speed (as for strokes,
+// sprites.cpp: how fast its distance can cross an overlapping sprite's while the eye moves, so
+// patches too change order softly); the caller sets its item, particle, object, fade and patch.
+Sprite patch_sprite(const GraftalPatch& patch, const FrameView& view, const glm::dvec3& at);
+
 // The tufts the difference image places in a frame seen by `cam` (file 004): per group, one
 // weight per site for the groups placed that way (0: not placed; below 1: fading, within `band`
 // of the threshold), empty for the others. The candidates are the groups' sites in the frame or

@@ -28,7 +28,8 @@ glm::vec4 texel(const ImposterImage& img, int x, int y) {
 // its neighbours at any level.
 ImposterImage halve(const ImposterImage& src, int rows, int columns, int w, int h, int& w2,
                     int& h2) {
-    w2 = std::max(1, w / 2), h2 = std::max(1, h / 2);
+    // Rounded up, so an odd cell's last row (its base) is read too.
+    w2 = std::max(1, (w + 1) / 2), h2 = std::max(1, (h + 1) / 2);
     ImposterImage out;
     out.width = columns * w2, out.height = rows * h2;
     out.pixels.assign(static_cast<size_t>(out.width) * out.height, glm::vec4(0.0f));
@@ -65,8 +66,9 @@ void build_levels(ImposterAtlas& a) {
 glm::vec4 cell_sample(const ImposterAtlas& a, int l, int row, int column, float s, float t) {
     const ImposterImage& img = a.levels[static_cast<size_t>(l)];
     const int w = img.width / a.columns, h = img.height / a.rows;
-    const float fx = std::clamp(s * w - 0.5f, 0.0f, float(w - 1));
-    const float fy = std::clamp((1.0f - t) * h - 0.5f, 0.0f, float(h - 1));
+    const float sx = s * w - 0.5f, sy = (1.0f - t) * h - 0.5f;
+    const float fx = sx > 0.0f ? std::min(sx, float(w - 1)) : 0.0f;  // NaN: 0
+    const float fy = sy > 0.0f ? std::min(sy, float(h - 1)) : 0.0f;
     const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
     const int x1 = std::min(x0 + 1, w - 1), y1 = std::min(y0 + 1, h - 1);
     const float ax = fx - x0, ay = fy - y0;
@@ -93,7 +95,7 @@ float to_srgb(float c) {
         t[4097] = t[4096];
         return t;
     }();
-    const float x = std::clamp(c, 0.0f, 1.0f) * 4096.0f;
+    const float x = (c > 0.0f ? std::min(c, 1.0f) : 0.0f) * 4096.0f;  // NaN: 0
     const int i = static_cast<int>(x);
     return table[size_t(i)] + (table[size_t(i) + 1] - table[size_t(i)]) * (x - float(i));
 }
@@ -127,9 +129,16 @@ bool inverse_bilinear(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2
 
 }  // namespace
 
-glm::vec4 ImposterImage::sample(float u, float v) const {
+glm::vec4 ImposterImage::sample(float u, float v, bool wrap_u) const {
     if (empty()) return glm::vec4(0.0f);
-    u -= std::floor(u);
+    if (!std::isfinite(u)) u = 0;
+    if (!std::isfinite(v)) v = 0;
+    if (wrap_u) {
+        u -= std::floor(u);
+    } else {
+        // Clamped: the texel centres at either side hold to the edge.
+        u = std::clamp(u, 0.5f / width, 1.0f - 0.5f / width);
+    }
     const float fx = u * width - 0.5f;
     const float fy = std::clamp(v * height - 0.5f, 0.0f, float(height - 1));
     const int x0 = static_cast<int>(std::floor(fx)), y0 = static_cast<int>(fy);
@@ -258,14 +267,9 @@ GraftalPatch draw_imposter(const ImposterAtlas& a, const ImposterQuad& q, const 
         lo_x = std::min(lo_x, v.x), hi_x = std::max(hi_x, v.x);
         lo_y = std::min(lo_y, v.y), hi_y = std::max(hi_y, v.y);
     }
-    const int x0 = static_cast<int>(std::floor(std::max(lo_x, 0.0)));
-    const int y0 = static_cast<int>(std::floor(std::max(lo_y, 0.0)));
-    const int x1 = static_cast<int>(std::ceil(std::min(hi_x, double(cam.width))));
-    const int y1 = static_cast<int>(std::ceil(std::min(hi_y, double(cam.height))));
-    if (x1 <= x0 || y1 <= y0) return {};
-    GraftalPatch patch;
-    patch.x0 = x0, patch.y0 = y0;
-    patch.width = std::min(x1 - x0, max_px), patch.height = std::min(y1 - y0, max_px);
+    GraftalPatch patch = patch_over(lo_x, lo_y, hi_x, hi_y, cam, max_px);
+    if (patch.empty()) return {};
+    const int x0 = patch.x0, y0 = patch.y0;
     // The quad's exact share of each pixel (its sides are straight on screen even when it is
     // bilinear), so a quad turning edge-on keeps the ink its area gives, however thin.
     CoverageRaster raster(patch.width, patch.height);
@@ -289,7 +293,6 @@ GraftalPatch draw_imposter(const ImposterAtlas& a, const ImposterQuad& q, const 
     const double det = cross2(e, f);
     const bool flat = std::abs(det) > 1e-12;
     const bool affine = flat && glm::length(p[0] - p[1] + p[2] - p[3]) < 0.05;
-    patch.pixels.assign(static_cast<size_t>(patch.width) * patch.height, 0u);
     bool any = false;
     for (int y = 0; y < patch.height; ++y)
         for (int x = 0; x < patch.width; ++x) {
@@ -336,7 +339,7 @@ glm::vec2 imposter_uv(ImposterUv uv, const glm::vec3& p, const glm::vec3& lo, co
 
 int control_row(const ImposterDesc& d, const glm::vec2& uv) {
     if (!d.control.empty()) {
-        const glm::vec4 c = d.control.sample(uv.x, 1.0f - uv.y);
+        const glm::vec4 c = d.control.sample(uv.x, 1.0f - uv.y, d.uv == ImposterUv::kCylinder);
         if (c.w < 0.5f) return -1;
         return c.x >= c.y && c.x >= c.z ? 0 : c.y >= c.z ? 1 : 2;
     }

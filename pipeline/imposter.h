@@ -25,8 +25,9 @@ struct ImposterImage {
     int width = 0, height = 0;
     std::vector<glm::vec4> pixels;
     bool empty() const { return pixels.empty(); }
-    // Bilinear at (u, v) in [0, 1]^2 (v down the rows), u wrapping round, v clamped.
-    glm::vec4 sample(float u, float v) const;
+    // Bilinear at (u, v) in [0, 1]^2 (v down the rows), u wrapping round (round a cylinder) or
+    // clamped, v clamped.
+    glm::vec4 sample(float u, float v, bool wrap_u = true) const;
 };
 
 // The texture atlas (file 002, figure 5.9.1): `rows` types of graftal imposter, `columns`
@@ -63,10 +64,10 @@ struct ImposterDesc {
     float fade_frames = 4;     // near a moving eye, the fewest frames an edge takes to come in
     float min_edge_px = 1.5f;  // edges shorter on screen fade out below this
     float light = 0.4f;        // the sun's shading, as a graftal's
-    float coverage = 1.0f;     // the share of faces the control allows, chosen by a hash
+    float coverage = 1.0f;     // the share of edges the control allows, chosen by a hash
     // The control texture: an image (alpha < 1/2 none; else the row of its largest of red,
-    // green, blue, as in the paper) or, without one, `rows` as a column of texels up v (-1:
-    // none). Sampled at the front face's centre.
+    // green, blue, as in the paper; a row the atlas lacks is none) or, without one, `rows` as a
+    // column of texels up v (-1: none). Read at each edge's middle (imposter_stage.h).
     ImposterImage control;
     std::vector<int> rows{0};
     // The vector field: D = normalize(normal x n + up x (0, 1, 0) + field), the field an

@@ -56,8 +56,8 @@ void visit_imposter(D& d, V& v) {
            "radians, a frame), so the fade band widens there until no edge comes in or goes in "
            "fewer frames than this; 0: `fade` alone.");
     v.real("min_edge_px", d.min_edge_px, {0, 100}, "px",
-           "Edges shorter than this on screen (their length at their depth, not foreshortened) "
-           "fade out, to nothing at half of it.");
+           "Imposters whose base (the edge, or `width`) is shorter than this on screen (at its "
+           "depth, not foreshortened) fade out, to nothing at half of it.");
     v.real("light", d.light, {0, 0.9}, "",
            "How much the sun shades them: colours x (1 - light + light x max(0, n.l)).");
     v.object("atlas", "The texture atlas (file 002, figure 5.9.1): a row per type", [&] {
@@ -75,15 +75,16 @@ void visit_imposter(D& d, V& v) {
         v.integer("cell_px", d.atlas_cell_px, {4, 512},
                   "Pixels a side of a cell drawn from graftals.");
     });
-    v.object("control",
-             "The control texture (file 002, figure 5.9.2), read at the front face's centre", [&] {
+    v.object("control", "The control texture (file 002, figure 5.9.2), read at each edge's middle",
+             [&] {
                  v.text("image", d.control_image,
                         "An image: alpha under 1/2 allows none; elsewhere its largest of red, "
-                        "green and blue picks the atlas's row 0, 1 or 2. Relative to this file.");
+                        "green and blue picks the atlas's row 0, 1 or 2 (a row the atlas lacks: "
+                        "none). Relative to this file.");
                  v.claim("rows");  // a list, read by read_rows
                  v.real("coverage", d.coverage, {0, 1}, "",
-                        "The share of faces the control allows that carry imposters, chosen by "
-                        "a hash of the face (fixed on the surface).");
+                        "The share of the edges the control allows that carry imposters, chosen "
+                        "by a hash of the edge (fixed on the surface).");
              });
     v.object("direction", "The vector field (file 002, figure 5.9.3): where imposters point", [&] {
         v.real("normal", d.normal, {-10, 10}, "",
@@ -149,10 +150,10 @@ ImposterImage read_imposter_image(const std::string& path, const std::string& so
                          "cannot read image \"" + path + "\"" + (err.empty() ? "" : ": " + err));
     }
     const OIIO::ImageSpec& spec = in->spec();
-    const int nch = spec.nchannels;
-    if (spec.width < 1 || spec.height < 1 || spec.width > 8192 || spec.height > 8192 || nch < 1)
+    const int nch = std::min(spec.nchannels, 4);  // RGBA at most: more is not read
+    if (spec.width < 1 || spec.height < 1 || spec.width > 4096 || spec.height > 4096 || nch < 1)
         throw InputError(source, pointer,
-                         "image \"" + path + "\" must be 1 to 8192 pixels a side, got " +
+                         "image \"" + path + "\" must be 1 to 4096 pixels a side, got " +
                              std::to_string(spec.width) + " x " + std::to_string(spec.height));
     std::vector<float> data(static_cast<size_t>(spec.width) * spec.height * nch);
     if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::FLOAT, data.data())) {
@@ -229,10 +230,13 @@ ImposterDesc parse_imposter(const std::string& text, const std::string& source,
                                         " row(s), so a row must be -1 to " +
                                         std::to_string(atlas_rows - 1) + ", got " +
                                         std::to_string(d.rows[i])});
-        if (!d.control_image.empty() && doc["control"].contains("rows"))
+        const auto has = [&](const char* object, const char* key) {
+            const auto it = doc.find(object);
+            return it != doc.end() && it->is_object() && it->contains(key);
+        };
+        if (!d.control_image.empty() && has("control", "rows"))
             problems.push_back({"/control/rows", "give \"rows\" or \"image\", not both"});
-        if (!d.color_image.empty() &&
-            (doc["color"].contains("bottom") || doc["color"].contains("top")))
+        if (!d.color_image.empty() && (has("color", "bottom") || has("color", "top")))
             problems.push_back({"/color/image",
                                 "give \"image\" or \"bottom\" and \"top\", not "
                                 "both"});

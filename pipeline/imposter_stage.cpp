@@ -12,6 +12,7 @@
 #include "generators/rng.h"
 #include "pipeline/camera.h"
 #include "pipeline/frame_plan.h"
+#include "pipeline/graftal_stage.h"
 #include "pipeline/landscape.h"
 #include "pipeline/rays.h"
 #include "pipeline/shot.h"
@@ -68,14 +69,16 @@ ImposterObject make_imposter_object(std::shared_ptr<const ImposterDesc> desc, co
                              (1.0 / 9007199254740992.0);
             if (!(u < d.coverage)) continue;
         }
-        o.rows[i] = static_cast<int8_t>(
-            control_row(d, uv_of(0.5f * (mesh.positions[e.a] + mesh.positions[e.b]))));
+        const int row = control_row(d, uv_of(0.5f * (mesh.positions[e.a] + mesh.positions[e.b])));
+        // A control image's green or blue over an atlas of fewer rows: nothing there.
+        o.rows[i] = static_cast<int8_t>(d.atlas && row < d.atlas->rows ? row : -1);
     }
+    const bool wrap = d.uv == ImposterUv::kCylinder;  // round the object; a plan's sides clamp
     // The colour texture at each vertex.
     o.colors.resize(nv);
     for (size_t v = 0; v < nv; ++v) {
         const glm::vec2 uv = uv_of(mesh.positions[v]);
-        o.colors[v] = !d.color.empty() ? glm::vec3(d.color.sample(uv.x, 1.0f - uv.y))
+        o.colors[v] = !d.color.empty() ? glm::vec3(d.color.sample(uv.x, 1.0f - uv.y, wrap))
                                        : d.bottom + (d.top - d.bottom) * uv.y;
     }
     // The vector field at each edge's middle, in the mesh's frame.
@@ -91,7 +94,7 @@ ImposterObject make_imposter_object(std::shared_ptr<const ImposterDesc> desc, co
         glm::vec3 dir = d.normal * n_edge + d.up * up_local;
         if (!d.field.empty()) {
             const glm::vec2 uv = uv_of(0.5f * (mesh.positions[e.a] + mesh.positions[e.b]));
-            dir += glm::vec3(d.field.sample(uv.x, 1.0f - uv.y)) * 2.0f - 1.0f;
+            dir += glm::vec3(d.field.sample(uv.x, 1.0f - uv.y, wrap)) * 2.0f - 1.0f;
         }
         o.directions[i] = unit_or(glm::dvec3(dir), n_edge);
     }
@@ -280,16 +283,8 @@ ImposterStageReport add_imposter_sprites(const Shot& shot, const FrameView& view
         const ImposterObject& o = shot.imposters[dr.object];
         const ImposterQuad& q = dr.c.quad;
         const glm::dvec3 centre = 0.25 * (q.v0 + q.v1 + q.t0 + q.t1);
-        Sprite sp;
-        sp.kind = SpriteKind::kGraftal;
+        Sprite sp = patch_sprite(patch, view, centre);
         sp.item = first_item + dr.object, sp.particle = dr.c.edge;
-        sp.x = patch.x0 + 0.5f * patch.width, sp.y = patch.y0 + 0.5f * patch.height;
-        sp.half_l = 0.5f * patch.width, sp.half_w = 0.5f * patch.height;
-        sp.ax = 1, sp.ay = 0;
-        sp.swap_speed =
-            static_cast<float>(view.eye_speed * pmath::hypot(sp.half_w, sp.half_l) / cam.focal_px);
-        sp.depth = project(cam, centre).depth;
-        sp.range = static_cast<float>(glm::length(cam.eye - centre));
         sp.object_id = o.object_id;
         sp.fade = dr.c.weight * seen[k];
         sp.k.lightness = 1;

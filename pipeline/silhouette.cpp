@@ -38,11 +38,14 @@ std::vector<MeshEdge> mesh_edges(const QuadMesh& mesh) {
     std::sort(half.begin(), half.end(), less);
     std::vector<MeshEdge> out;
     out.reserve(half.size() / 2 + 1);
-    for (const Half& h : half) {
+    for (size_t k = 0; k < half.size(); ++k) {
+        const Half& h = half[k];
+        // A directed edge two faces run (a mesh not consistently oriented): one edge.
+        if (k > 0 && half[k - 1].from == h.from && half[k - 1].to == h.to) continue;
         auto it = std::lower_bound(half.begin(), half.end(), Half{h.to, h.from, 0}, less);
         const bool has_twin = it != half.end() && it->from == h.to && it->to == h.from;
         // Once per edge: a border from its one face; a shared edge from the smaller-numbered
-        // vertex's side (ties within one pair by face, so a repeated directed edge is kept once).
+        // vertex's side, with the first face found on each side.
         if (!has_twin) {
             out.push_back({h.from, h.to, h.face, MeshEdge::kBorder});
         } else if (h.from < h.to) {

@@ -27,7 +27,8 @@ struct MeshEdge {
 
 // Every edge once, sorted by (a, b) as face0 runs it: the adjacency a frame's silhouette test
 // reads, built once per mesh. A directed edge used by more than one face (a mesh that is not
-// oriented) pairs with the first twin found; corners naming no vertex are skipped.
+// oriented) is one edge, with the first face that runs it and the first twin; corners naming no
+// vertex are skipped.
 std::vector<MeshEdge> mesh_edges(const QuadMesh& mesh);
 
 // Face normals as the cross product of the diagonals (unnormalised; 0 for a face naming no

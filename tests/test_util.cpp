@@ -163,4 +163,13 @@ int spawn_pleinair(const std::vector<std::string>& args) {
     return pid;
 }
 
+QuadMesh unit_cube() {
+    QuadMesh m;
+    for (int i = 0; i < 8; ++i)
+        m.positions.push_back(
+            glm::vec3(i & 1 ? 0.5f : -0.5f, i & 2 ? 0.5f : -0.5f, i & 4 ? 0.5f : -0.5f));
+    m.quads = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    return m;
+}
+
 }  // namespace pleinair::test

@@ -42,6 +42,10 @@ RunResult run_pleinair(const std::string& args);
 // Starts the pleinair binary with `args` (no shell), output discarded; returns its PID, or -1.
 int spawn_pleinair(const std::vector<std::string>& args);
 
+// The unit cube centred at the origin, corners counter-clockwise seen from outside; vertex i
+// has x, y, z = +0.5 where bit 0, 1, 2 of i is set.
+QuadMesh unit_cube();
+
 // A fresh empty directory under the system's temporary folder.
 std::filesystem::path temp_dir(const std::string& name);
 

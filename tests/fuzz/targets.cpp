@@ -11,6 +11,7 @@
 #include "pipeline/error.h"
 #include "pipeline/graftal_io.h"
 #include "pipeline/graftal_lod.h"
+#include "pipeline/imposter_io.h"
 #include "pipeline/json_params.h"
 #include "pipeline/particle_files.h"
 #include "pipeline/scene.h"
@@ -179,6 +180,31 @@ int graftal(const uint8_t* data, size_t size) {
         }
         if (replay_tuft(g.tuft, lambda, 23, 24).tau != s.tau)
             finding("graftal", "a replayed tuft that differs from the stepped one");
+    });
+    return 0;
+}
+
+int imposter(const uint8_t* data, size_t size) {
+    refused_cleanly("imposter", [&] {
+        const ImposterDesc d = parse_imposter(text(data, size), "fuzz.json");
+        // Accepted: an atlas of whole cells, control rows it has, and one imposter of every
+        // cell drawn without a crash.
+        if (!d.atlas || d.atlas->levels.empty()) finding("imposter", "no atlas");
+        const ImposterAtlas& a = *d.atlas;
+        if (a.levels[0].width != a.columns * a.cell_w || a.levels[0].height != a.rows * a.cell_h)
+            finding("imposter", "an atlas of broken cells");
+        for (int r : d.rows)
+            if (r < -1 || r >= a.rows) finding("imposter", "a control row the atlas lacks");
+        Camera cam;
+        cam.eye = glm::dvec3(0, 0, 10);
+        cam.width = cam.height = 32;
+        cam.focal_px = 64;
+        ImposterQuad q;
+        q.v0 = {-1, -1, 0}, q.v1 = {1, -1, 0}, q.t0 = {-1, 1, 0}, q.t1 = {1, 1, 0};
+        for (q.row = 0; q.row < a.rows; ++q.row)
+            for (q.column = 0; q.column < a.columns; ++q.column)
+                if (draw_imposter(a, q, cam).pixels.size() > 32u * 32u)
+                    finding("imposter", "a patch larger than the frame");
     });
     return 0;
 }

@@ -17,7 +17,8 @@ int palette(const uint8_t* data, size_t size);
 int scene(const uint8_t* data, size_t size);      // camera and sun tracks included
 int set_value(const uint8_t* data, size_t size);  // --set POINTER=VALUE lines on a scene
 int particle_file(const uint8_t* data, size_t size);
-int graftal(const uint8_t* data, size_t size);  // a graftal description, then its tuft replayed
+int graftal(const uint8_t* data, size_t size);   // a graftal description, then its tuft replayed
+int imposter(const uint8_t* data, size_t size);  // an imposter description, then one drawn
 
 struct Target {
     const char* name;
@@ -27,7 +28,7 @@ inline constexpr Target kTargets[] = {
     {"tree_preset", tree_preset}, {"shader_preset", shader_preset},
     {"palette", palette},         {"scene", scene},
     {"set_value", set_value},     {"particle_file", particle_file},
-    {"graftal", graftal},
+    {"graftal", graftal},         {"imposter", imposter},
 };
 
 }  // namespace pleinair::fuzz

@@ -16,18 +16,10 @@
 #include "pipeline/paint.h"
 #include "pipeline/presets.h"
 #include "pipeline/shot.h"
+#include "test_util.h"
 
 namespace pleinair {
 namespace {
-
-QuadMesh cube() {
-    QuadMesh m;
-    for (int i = 0; i < 8; ++i)
-        m.positions.push_back(
-            glm::vec3(i & 1 ? 0.5f : -0.5f, i & 2 ? 0.5f : -0.5f, i & 4 ? 0.5f : -0.5f));
-    m.quads = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    return m;
-}
 
 std::shared_ptr<ImposterDesc> plain_desc() {
     auto d = std::make_shared<ImposterDesc>();
@@ -52,7 +44,7 @@ Camera looking_from(const glm::dvec3& eye, int size = 512) {
 }
 
 TEST(ImposterEdges, BuiltOnceWithTheirFaces) {
-    const auto edges = mesh_edges(cube());
+    const auto edges = mesh_edges(test::unit_cube());
     ASSERT_EQ(edges.size(), 12u);
     for (const MeshEdge& e : edges) EXPECT_NE(e.face1, MeshEdge::kBorder);
     QuadMesh quad;
@@ -61,10 +53,15 @@ TEST(ImposterEdges, BuiltOnceWithTheirFaces) {
     const auto open = mesh_edges(quad);
     ASSERT_EQ(open.size(), 4u);
     for (const MeshEdge& e : open) EXPECT_EQ(e.face1, MeshEdge::kBorder);
+    // Two faces running 0 -> 1 the same way (not oriented): still one edge 0-1, seven in all.
+    QuadMesh folded;
+    folded.positions = {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}, {0, 1, 0}, {1, 1, 0}};
+    folded.quads = {{0, 1, 2, 3}, {0, 1, 5, 4}};
+    EXPECT_EQ(mesh_edges(folded).size(), 7u);
 }
 
 TEST(ImposterStage, OnTheSilhouetteOnlyWithoutFade) {
-    const QuadMesh m = cube();
+    const QuadMesh m = test::unit_cube();
     const ImposterObject o =
         make_imposter_object(plain_desc(), m, glm::dvec3(0.0), glm::dmat3(1.0), 1.0, 1, 7);
     const glm::dvec3 eye(3, 2.5, 4);
@@ -81,25 +78,14 @@ TEST(ImposterStage, OnTheSilhouetteOnlyWithoutFade) {
     EXPECT_EQ(got, want);
 }
 
-// An orbit round a rock, a quarter of a degree a frame: how much an edge's weight can change
-// from one frame to the next. Half the edges are allowed, and only on the rock's upper half, so
-// an edge whose two faces the control treats differently is tried as the silhouette passes.
-float steepest_change(float fade) {
-    RockParams rp;
-    const QuadMesh rock = generate_rock(rp, 3, glm::dvec3(0.0));
-    auto d = plain_desc();
-    d->fade = fade;
-    d->coverage = 0.5f;
-    d->rows = {-1, 0};
-    const ImposterObject o =
-        make_imposter_object(d, rock, glm::dvec3(0.0), glm::dmat3(1.0), 1.0, 1, 7);
+// The most an edge's weight changes from one camera to the next along `cameras` (an edge absent
+// is at 0; the rock stays in every frame), with the eye moving `speed` a frame.
+float steepest_along(const ImposterObject& o, const std::vector<Camera>& cameras, double speed) {
     std::map<uint32_t, float> before;
     float steepest = 0;
-    for (int step = 0; step <= 240; ++step) {
-        const double a = step * 0.25 * M_PI / 180.0;
-        const glm::dvec3 eye(6 * std::sin(a), 1.5, 6 * std::cos(a));
+    for (size_t step = 0; step < cameras.size(); ++step) {
         std::map<uint32_t, float> now;
-        for (const ImposterCandidate& c : imposter_candidates(o, looking_from(eye), {0, 1, 0}))
+        for (const ImposterCandidate& c : imposter_candidates(o, cameras[step], {0, 1, 0}, speed))
             now[c.edge] = c.weight;
         if (step > 0) {
             for (const auto& [e, w] : now)
@@ -110,6 +96,26 @@ float steepest_change(float fade) {
         before = std::move(now);
     }
     return steepest;
+}
+
+// An orbit round a rock, a quarter of a degree a frame: how much an edge's weight can change
+// from one frame to the next. Half the edges are allowed, and only on the rock's upper half, so
+// an edge whose two faces the control would treat differently is tried as the silhouette passes.
+float steepest_change(float fade) {
+    RockParams rp;
+    const QuadMesh rock = generate_rock(rp, 3, glm::dvec3(0.0));
+    auto d = plain_desc();
+    d->fade = fade;
+    d->coverage = 0.5f;
+    d->rows = {-1, 0};
+    const ImposterObject o =
+        make_imposter_object(d, rock, glm::dvec3(0.0), glm::dmat3(1.0), 1.0, 1, 7);
+    std::vector<Camera> orbit;
+    for (int step = 0; step <= 240; ++step) {
+        const double a = step * 0.25 * M_PI / 180.0;
+        orbit.push_back(looking_from({6 * std::sin(a), 1.5, 6 * std::cos(a)}));
+    }
+    return steepest_along(o, orbit, 0.0);
 }
 
 TEST(ImposterStage, EdgesNearingTheSilhouetteFadeInInsteadOfPopping) {
@@ -128,30 +134,18 @@ float steepest_walking_past(float fade_frames) {
     d->fade_frames = fade_frames;
     const ImposterObject o =
         make_imposter_object(d, rock, glm::dvec3(0.0), glm::dmat3(1.0), 1.0, 1, 7);
-    std::map<uint32_t, float> before;
-    float steepest = 0;
     const double speed = 0.1;
+    std::vector<Camera> walk;
     for (int step = 0; step <= 60; ++step) {
-        const glm::dvec3 eye(-3 + speed * step, 0.4, 1.8);
         CameraParams p;
-        p.position = eye;
-        p.look_at = glm::dvec3(0.0);  // the rock stays in the frame: an edge absent is at 0
+        p.position = glm::dvec3(-3 + speed * step, 0.4, 1.8);
+        p.look_at = glm::dvec3(0.0);
         p.width = p.height = 512;
         p.fov = 90;
-        Camera cam;
-        make_camera(p, cam);
-        std::map<uint32_t, float> now;
-        for (const ImposterCandidate& c : imposter_candidates(o, cam, {0, 1, 0}, speed))
-            now[c.edge] = c.weight;
-        if (step > 0) {
-            for (const auto& [e, w] : now)
-                steepest = std::max(steepest, std::abs(w - (before.count(e) ? before[e] : 0.0f)));
-            for (const auto& [e, w] : before)
-                if (!now.count(e)) steepest = std::max(steepest, w);
-        }
-        before = std::move(now);
+        walk.emplace_back();
+        make_camera(p, walk.back());
     }
-    return steepest;
+    return steepest_along(o, walk, speed);
 }
 
 TEST(ImposterStage, NearAMovingEyeTheFadeBandWidensWithItsSpeed) {
@@ -202,6 +196,13 @@ TEST(ImposterStage, ColumnsStayDirectionsFollowTheFieldControlAndCoverageChoose)
         EXPECT_GE(0.5f * (rock.positions[e.a].y + rock.positions[e.b].y),
                   box.min.y + 0.5f * (box.max.y - box.min.y) - 1e-5f);
     }
+    // A control image's green asks for row 1 of a one-row atlas: none there.
+    auto green = plain_desc();
+    green->control.width = green->control.height = 1;
+    green->control.pixels = {glm::vec4(0, 1, 0, 1)};
+    const ImposterObject g =
+        make_imposter_object(green, rock, glm::dvec3(0.0), glm::dmat3(1.0), 1.0, 1, 7);
+    for (int8_t r : g.rows) EXPECT_EQ(r, -1);
     // Coverage thins the edges by a hash: about the share asked, the same every time.
     auto half = plain_desc();
     half->coverage = 0.5f;

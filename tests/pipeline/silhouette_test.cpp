@@ -9,19 +9,10 @@
 
 #include "generators/rng.h"
 #include "generators/rock.h"
+#include "test_util.h"
 
 namespace pleinair {
 namespace {
-
-// The unit cube centred at the origin, corners counter-clockwise seen from outside.
-QuadMesh cube() {
-    QuadMesh m;
-    for (int i = 0; i < 8; ++i)
-        m.positions.push_back(
-            glm::vec3(i & 1 ? 0.5f : -0.5f, i & 2 ? 0.5f : -0.5f, i & 4 ? 0.5f : -0.5f));
-    m.quads = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    return m;
-}
 
 // Silhouette degree of each vertex.
 std::map<uint32_t, int> degrees(const std::vector<SilhouetteEdge>& edges) {
@@ -31,8 +22,8 @@ std::map<uint32_t, int> degrees(const std::vector<SilhouetteEdge>& edges) {
 }
 
 TEST(Silhouette, ACubeSeenFromACornerIsAHexagon) {
-    ASSERT_TRUE(check_mesh(cube()).ok());
-    const auto edges = silhouette_edges(cube(), {3, 2.5, 4});
+    ASSERT_TRUE(check_mesh(test::unit_cube()).ok());
+    const auto edges = silhouette_edges(test::unit_cube(), {3, 2.5, 4});
     ASSERT_EQ(edges.size(), 6u);
     const auto d = degrees(edges);
     EXPECT_EQ(d.size(), 6u);  // every corner but the nearest and the farthest
@@ -41,9 +32,10 @@ TEST(Silhouette, ACubeSeenFromACornerIsAHexagon) {
     EXPECT_EQ(d.count(0), 0u);  // (-,-,-), hidden behind
     for (const SilhouetteEdge& e : edges) {
         // The face that owns the edge faces the eye.
-        const glm::uvec4 q = cube().quads[e.front_face];
-        const glm::vec3 n = glm::cross(cube().positions[q.z] - cube().positions[q.x],
-                                       cube().positions[q.w] - cube().positions[q.y]);
+        const glm::uvec4 q = test::unit_cube().quads[e.front_face];
+        const glm::vec3 n =
+            glm::cross(test::unit_cube().positions[q.z] - test::unit_cube().positions[q.x],
+                       test::unit_cube().positions[q.w] - test::unit_cube().positions[q.y]);
         EXPECT_GT(glm::dot(glm::dvec3(n), glm::dvec3(3, 2.5, 4)), 0.0);
     }
 }
@@ -51,15 +43,15 @@ TEST(Silhouette, ACubeSeenFromACornerIsAHexagon) {
 TEST(Silhouette, ACubeSeenFaceOnInPerspectiveIsItsFrontSquare) {
     // From straight in front the side faces turn away (perspective), so the outline is the
     // front face's four edges.
-    const auto edges = silhouette_edges(cube(), {0, 0, 10});
+    const auto edges = silhouette_edges(test::unit_cube(), {0, 0, 10});
     ASSERT_EQ(edges.size(), 4u);
     for (const SilhouetteEdge& e : edges) EXPECT_EQ(e.front_face, 1u);  // the +z face
     // From infinitely far (orthographic in the limit) nothing changes but the distance.
-    EXPECT_EQ(silhouette_edges(cube(), {0, 0, 1e6}).size(), 4u);
+    EXPECT_EQ(silhouette_edges(test::unit_cube(), {0, 0, 1e6}).size(), 4u);
 }
 
 TEST(Silhouette, AnOpenBoxShowsTheRimOfTheWallThatFacesTheEye) {
-    QuadMesh box = cube();
+    QuadMesh box = test::unit_cube();
     box.quads.erase(box.quads.begin() + 3);  // no top (+y): four borders at y = 0.5
     // From beside, the +z wall faces the eye and its top border has no face beyond it.
     int rim = 0;
@@ -89,7 +81,7 @@ TEST(Silhouette, ARocksSilhouetteClosesIntoLoopsFromEveryEye) {
 }
 
 TEST(Silhouette, BrokenIndicesAndDegenerateFacesDoNotCrash) {
-    QuadMesh m = cube();
+    QuadMesh m = test::unit_cube();
     m.quads.push_back({0, 1, 99, 2});  // an index past the end: skipped
     m.positions[3] = m.positions[1] = glm::vec3(0.5f, -0.5f, -0.5f);  // a collapsed face
     const auto edges = silhouette_edges(m, {3, 2.5, 4});
