@@ -245,6 +245,15 @@ Sprite patch_sprite(const GraftalPatch& patch, const FrameView& view, const glm:
     return sp;
 }
 
+uint64_t add_patch_sprite(SpriteSet& sprites, Sprite sp, GraftalPatch patch) {
+    const uint64_t pixels = patch.pixels.size();
+    sp.patch = static_cast<int32_t>(sprites.patches.size());
+    sprites.patches.push_back(std::move(patch));
+    sprites.sprites.push_back(sp);
+    ++sprites.graftal;
+    return pixels;
+}
+
 GraftalStageReport add_graftal_sprites(const Shot& shot, const FrameView& view,
                                        const RenderSettings& settings, SpriteSet& sprites,
                                        const FrameView* lod_view) {
@@ -327,11 +336,7 @@ GraftalStageReport add_graftal_sprites(const Shot& shot, const FrameView& view,
         sp.object_id = inst.object;
         sp.fade = dr.pose.tau * dr.weight;
         sp.k.lightness = inst.lightness * dr.pose.shade;
-        sp.patch = static_cast<int32_t>(sprites.patches.size());
-        rep.pixels += patch.pixels.size();
-        sprites.patches.push_back(std::move(patch));
-        sprites.sprites.push_back(sp);
-        ++sprites.graftal;
+        rep.pixels += add_patch_sprite(sprites, sp, std::move(patch));
         ++rep.drawn;
     }
     return rep;

@@ -46,6 +46,8 @@ GraftalStageReport add_graftal_sprites(const Shot& shot, const FrameView& view,
 // sprites.cpp: how fast its distance can cross an overlapping sprite's while the eye moves, so
 // patches too change order softly); the caller sets its item, particle, object, fade and patch.
 Sprite patch_sprite(const GraftalPatch& patch, const FrameView& view, const glm::dvec3& at);
+// Appends the sprite with its patch (sprites.patches) and counts it; returns the patch's pixels.
+uint64_t add_patch_sprite(SpriteSet& sprites, Sprite sp, GraftalPatch patch);
 
 // The tufts the difference image places in a frame seen by `cam` (file 004): per group, one
 // weight per site for the groups placed that way (0: not placed; below 1: fading, within `band`

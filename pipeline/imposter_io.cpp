@@ -109,10 +109,6 @@ std::string near_preset(const std::string& name, const std::string& source) {
     return is_file ? near_file_path(name, source) : name;
 }
 
-std::string near_file(const std::string& name, const std::string& source) {
-    return near_file_path(name, source);
-}
-
 void read_rows(const json& doc, ImposterDesc& d, std::vector<Problem>& problems) {
     auto c = doc.find("control");
     if (c == doc.end() || !c->is_object() || !c->contains("rows")) return;
@@ -259,7 +255,7 @@ ImposterDesc parse_imposter(const std::string& text, const std::string& source,
             atlas_from_graftals(descs, d.atlas_columns, d.atlas_cell_px));
     } else {
         const ImposterImage img =
-            read_imposter_image(near_file(d.atlas_image, source), source, "/atlas/image");
+            read_imposter_image(near_file_path(d.atlas_image, source), source, "/atlas/image");
         if (img.width < d.atlas_columns || img.height < d.atlas_rows)
             throw InputError(source, "/atlas/image",
                              "an image of " + std::to_string(img.width) + " x " +
@@ -271,11 +267,13 @@ ImposterDesc parse_imposter(const std::string& text, const std::string& source,
     }
     if (!d.control_image.empty())
         d.control =
-            read_imposter_image(near_file(d.control_image, source), source, "/control/image");
+            read_imposter_image(near_file_path(d.control_image, source), source, "/control/image");
     if (!d.field_image.empty())
-        d.field = read_imposter_image(near_file(d.field_image, source), source, "/direction/image");
+        d.field =
+            read_imposter_image(near_file_path(d.field_image, source), source, "/direction/image");
     if (!d.color_image.empty()) {
-        d.color = read_imposter_image(near_file(d.color_image, source), source, "/color/image");
+        d.color =
+            read_imposter_image(near_file_path(d.color_image, source), source, "/color/image");
         for (glm::vec4& p : d.color.pixels) p = glm::vec4(srgb_to_linear(glm::vec3(p)), p.w);
     }
     return d;

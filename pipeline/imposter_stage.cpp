@@ -288,11 +288,7 @@ ImposterStageReport add_imposter_sprites(const Shot& shot, const FrameView& view
         sp.object_id = o.object_id;
         sp.fade = dr.c.weight * seen[k];
         sp.k.lightness = 1;
-        sp.patch = static_cast<int32_t>(sprites.patches.size());
-        rep.pixels += patch.pixels.size();
-        sprites.patches.push_back(std::move(patch));
-        sprites.sprites.push_back(sp);
-        ++sprites.graftal;
+        rep.pixels += add_patch_sprite(sprites, sp, std::move(patch));
         ++rep.drawn;
     }
     return rep;

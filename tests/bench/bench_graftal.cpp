@@ -24,18 +24,24 @@ namespace {
 
 const char* const kDescs[] = {"truffula-tuft", "seuss-leaf-tuft", "grass-tuft", "corot-leaf"};
 
-// One graftal of each example in turn, 40 pixels long, facing a 960 x 540 camera, drawn by
-// Cairo (second argument 0) or by pleinair's scanline coverage (1).
-void BM_GraftalDraw(benchmark::State& state) {
-    const GraftalDesc d = load_graftal(kDescs[state.range(0)]);
-    const GraftalRaster raster = state.range(1) ? GraftalRaster::kScanline : GraftalRaster::kCairo;
-    state.SetLabel(std::string(kDescs[state.range(0)]) + (state.range(1) ? " scanline" : " cairo"));
+// A 960 x 540 camera 10 units from the origin, looking at it down -z.
+Camera facing_camera() {
     CameraParams cp;
     cp.position = {0, 0, 10};
     cp.look_at = {0, 0, 0};
     cp.width = 960, cp.height = 540;
     Camera cam;
     make_camera(cp, cam);
+    return cam;
+}
+
+// One graftal of each example in turn, 40 pixels long, facing a 960 x 540 camera, drawn by
+// Cairo (second argument 0) or by pleinair's scanline coverage (1).
+void BM_GraftalDraw(benchmark::State& state) {
+    const GraftalDesc d = load_graftal(kDescs[state.range(0)]);
+    const GraftalRaster raster = state.range(1) ? GraftalRaster::kScanline : GraftalRaster::kCairo;
+    state.SetLabel(std::string(kDescs[state.range(0)]) + (state.range(1) ? " scanline" : " cairo"));
+    const Camera cam = facing_camera();
     GraftalInstance g;
     g.length = static_cast<float>(40.0 * 10.0 / cam.focal_px);
     g.position = {0, -0.5 * g.length, 0};
@@ -119,15 +125,10 @@ void BM_Frame(benchmark::State& state) {
 BENCHMARK(BM_Frame)->DenseRange(0, 6)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // One seuss-fringe imposter facing a 960 x 540 camera, its quad `state.range(0)` pixels a side:
-// the quad inverted into its cell at 2 x 2 samples a pixel, two atlas levels read, keyed.
+// its exact coverage, each pixel's centre inverted into its cell, two atlas levels read, keyed.
 void BM_ImposterDraw(benchmark::State& state) {
     const ImposterDesc d = load_imposter("seuss-fringe");
-    CameraParams cp;
-    cp.position = {0, 0, 10};
-    cp.look_at = {0, 0, 0};
-    cp.width = 960, cp.height = 540;
-    Camera cam;
-    make_camera(cp, cam);
+    const Camera cam = facing_camera();
     const double half = 0.5 * double(state.range(0)) * 10.0 / cam.focal_px;
     ImposterQuad q;
     q.v0 = {-half, -half, 0}, q.v1 = {half, -half, 0}, q.t0 = {-half, half, 0},
