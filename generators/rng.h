@@ -43,6 +43,7 @@ enum class Purpose : uint64_t {
     kImported = 14,   // an imported particle's label and random normal, per (file, id)
     kGraftal = 15,    // graftal sites and tufts, per (object, site, use)
     kImposter = 16,   // graftal imposters: atlas variations, per (row, column)
+    kSky = 17,        // the painted sky's strokes, per (layer, row, column)
 };
 
 // PCG32 (O'Neill 2014): small state, good statistics, and fully specified, so every platform

@@ -21,17 +21,21 @@ namespace pleinair {
 
 namespace {
 
+// The background's colour towards pixel (x, y), and in `sky_share` how much of it is sky (the
+// painted sky's strokes cover that much of it).
 Color background_color(const Background& b, const Camera& cam, const Color lin[4], double x,
-                       double y) {
+                       double y, float& sky_share) {
     glm::dvec3 dir = ray_direction(cam, x, y);
     float e = static_cast<float>(dir.y);
     Color c;
+    sky_share = 0;
     if (b.canvas) {
         c = lin[0];
     } else {
         Color sky = mix(lin[1], lin[0], smoothstep(0.0f, 0.6f, e));
         Color ground = mix(lin[2], lin[3], smoothstep(0.0f, 0.5f, -e));
-        c = mix(ground, sky, smoothstep(-b.horizon_softness, b.horizon_softness, e));
+        sky_share = smoothstep(-b.horizon_softness, b.horizon_softness, e);
+        c = mix(ground, sky, sky_share);
     }
     if (b.texture > 0) {
         // Attached to the view direction, so it does not swim when the camera moves.
@@ -150,6 +154,15 @@ struct TileLayer {
         first.fill(kNone);
         second.fill(kNone);
         first_weight.fill(1.0f);
+    }
+    // Pixels a layer in front already covers: closed before the first stroke.
+    void close_covered(const StrokeLayer& front_layer) {
+        for (int y = y0; y < y0 + h; ++y)
+            for (int x = x0; x < x0 + w; ++x)
+                if (front_layer.covered(static_cast<size_t>(y) * front_layer.width + x)) {
+                    open_until[at(x, y)] = -kInf;
+                    ++saturated;
+                }
     }
     void make_soft(float win, float speed, Held* pool) {
         soft = true, window = win, speed_max = speed, held = pool;
@@ -530,7 +543,7 @@ Frame make_frame(const Camera& cam, bool aovs) {
 }
 
 void paint_background(const SceneDesc& scene, const Camera& cam, const StrokeLayer& strokes,
-                      Frame& frame) {
+                      Frame& frame, const StrokeLayer* sky) {
     const Background& bg = scene.background;
     const Color lin[4] = {srgb_to_linear(bg.canvas ? bg.canvas_color : bg.sky_zenith),
                           srgb_to_linear(bg.sky_horizon), srgb_to_linear(bg.ground_horizon),
@@ -541,10 +554,13 @@ void paint_background(const SceneDesc& scene, const Camera& cam, const StrokeLay
     const int gw = (cam.width + kBgStep - 1) / kBgStep + 1;
     const int gh = (cam.height + kBgStep - 1) / kBgStep + 1;
     std::vector<Color> lattice(static_cast<size_t>(gw) * gh);
+    std::vector<float> share(lattice.size());
     tbb::parallel_for(0, gh, [&](int j) {
-        for (int i = 0; i < gw; ++i)
-            lattice[static_cast<size_t>(j) * gw + i] =
-                background_color(bg, cam, lin, kBgStep * i + 0.5, kBgStep * j + 0.5);
+        for (int i = 0; i < gw; ++i) {
+            const size_t at = static_cast<size_t>(j) * gw + i;
+            lattice[at] =
+                background_color(bg, cam, lin, kBgStep * i + 0.5, kBgStep * j + 0.5, share[at]);
+        }
     });
     tbb::parallel_for(0, cam.height, [&](int y) {
         const int j = y / kBgStep;
@@ -556,6 +572,14 @@ void paint_background(const SceneDesc& scene, const Camera& cam, const StrokeLay
             const int i = x / kBgStep;
             const float fx = static_cast<float>(x % kBgStep) / kBgStep;
             Color c = mix(mix(r0[i], r0[i + 1], fx), mix(r1[i], r1[i + 1], fx), fy);
+            if (sky) {
+                // The sky's strokes over the sky only: scaled by its share of the pixel.
+                const size_t pi = static_cast<size_t>(y) * cam.width + x, at = r0 - &lattice[0];
+                const float w = (share[at + i] * (1 - fx) + share[at + i + 1] * fx) * (1 - fy) +
+                                (share[at + gw + i] * (1 - fx) + share[at + gw + i + 1] * fx) * fy;
+                const float* s = &sky->color[3 * pi];
+                c = Color(s[0], s[1], s[2]) * w + c * (1.0f - w * (1.0f - sky->through[pi]));
+            }
             float* px = &frame.rgba[4 * (static_cast<size_t>(y) * cam.width + x)];
             px[0] = c.x, px[1] = c.y, px[2] = c.z, px[3] = 1.0f;
         }
@@ -564,7 +588,8 @@ void paint_background(const SceneDesc& scene, const Camera& cam, const StrokeLay
 
 StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins& bins,
                           const FramePlan& plan, const RenderSettings& rs, Frame& frame,
-                          const std::function<void(const char*, double)>* progress) {
+                          const std::function<void(const char*, double)>* progress,
+                          const StrokeLayer* behind) {
     StrokeLayer out;
     out.width = frame.width, out.height = frame.height;
     out.cutoff = rs.coverage_cutoff;
@@ -601,6 +626,7 @@ StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins
         // Front to back (the bin's order reversed), until every pixel of the tile is covered:
         // the strokes behind would not show.
         auto layer = std::make_unique<TileLayer>(px0, py0, px1, py1, rs.coverage_cutoff);
+        if (behind) layer->close_covered(*behind);
         float speed_max = 0;
         for (uint32_t idx : bin) speed_max = std::max(speed_max, set.sprites[idx].swap_speed);
         if (rs.order_blend_frames > 0 && speed_max > 0) {

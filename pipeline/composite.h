@@ -42,14 +42,18 @@ struct StrokeLayer {
 // (composite.cpp: TileLayer). Fills the AOVs of the nearest stroke more than half opaque when
 // the plan asks.
 // `progress`, when set, hears ("paint", done) at each whole percent of the tiles.
+// `behind`, when set, is a layer these strokes lie behind: they are painted only where it
+// leaves light through (the painted sky behind every other stroke).
 StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& sprites, const TileBins& bins,
                           const FramePlan& plan, const RenderSettings& settings, Frame& frame,
-                          const std::function<void(const char*, double)>* progress = nullptr);
+                          const std::function<void(const char*, double)>* progress = nullptr,
+                          const StrokeLayer* behind = nullptr);
 
 // Sky and ground seen from the camera (or the canvas colour), with slow noise, where the
-// strokes let it show.
+// strokes let it show; under the painted sky's strokes (`sky`, painted behind `strokes`) when
+// the scene has them.
 void paint_background(const SceneDesc& scene, const Camera& cam, const StrokeLayer& strokes,
-                      Frame& frame);
+                      Frame& frame, const StrokeLayer* sky = nullptr);
 
 // A flat palette colour and a depth where the camera sees terrain, water, rocks or trunks, at
 // underpaint_scale of the resolution, so no sky shows between strokes, over the background.

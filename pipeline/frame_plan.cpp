@@ -24,6 +24,7 @@ FramePlan plan_frame(const Shot& shot, const FrameSettings& settings) {
             atmos |= has_atmosphere_effect(*p);
             sub |= p->sub_stroke_amt > 0 && p->sub_stroke_frequ >= 0;
         }
+    if (!shot.sky.direction.empty()) sub |= scene.sky.shader.sub_stroke_amt > 0;
     plan.bark = shot.plan.bark;
     add("bark", plan.bark,
         plan.bark ? "trunks and branches are painted as strokes" : "render/bark_coverage is 0");
@@ -85,6 +86,12 @@ FramePlan plan_frame(const Shot& shot, const FrameSettings& settings) {
         plan.imposters ? "some family or material carries graftal imposters: silhouette edges "
                          "found, extruded and drawn from the atlas"
                        : "no family or material names imposters");
+    plan.sky = !shot.sky.direction.empty();
+    add("sky", plan.sky,
+        plan.sky             ? "a painted sky: strokes at infinity, turned with the camera, "
+                               "painted where no surface hides the sky"
+        : !scene.sky.present ? "the scene has no /sky: the background's gradient"
+                             : "the background is a canvas");
     plan.bare_blend = settings.bare_blend;
     plan.trace = settings.trace;
     plan.noise_reseed = settings.noise_reseed;

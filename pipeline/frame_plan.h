@@ -69,6 +69,7 @@ struct FramePlan {
     bool lod = false;        // the camera carries distance circles and level_of_detail is on
     bool graftals = false;   // some family or material is drawn in a graftal style
     bool imposters = false;  // some family or material carries graftal imposters
+    bool sky = false;        // a painted sky (sky.h): its strokes under every other
     bool trace = false;
     uint32_t noise_reseed = 0;
     std::vector<PassReport> decisions;

@@ -6,7 +6,8 @@
 namespace pleinair {
 
 MaterialTable::MaterialTable(const SceneDesc& scene)
-    : families_(static_cast<uint32_t>(scene.families.size())) {
+    : families_(static_cast<uint32_t>(scene.families.size())),
+      surfaces_(static_cast<uint32_t>(scene.materials.size())) {
     auto add = [&](SpriteKind kind, const StrokeShaderParams& shader, const Palette& palette,
                    const SurfaceShaderParams* surface) {
         materials_.push_back({kind, &shader, &palette, surface,
@@ -19,6 +20,7 @@ MaterialTable::MaterialTable(const SceneDesc& scene)
     }
     for (const Material& m : scene.materials)
         add(SpriteKind::kSurface, m.shader, m.palette, &m.surface);
+    if (scene.sky.present) add(SpriteKind::kSky, scene.sky.shader, scene.sky.palette, nullptr);
 }
 
 }  // namespace pleinair

@@ -13,8 +13,8 @@ namespace pleinair {
 // What a sprite is: a leaf, a bark stroke on a limb, or a stroke of a surface (grass, earth,
 // water, rock). Stated by whoever makes the sprite, never inferred from its other fields.
 // kGraftal: a graftal's patch drawn by the graftals stage (graftal_stage.h), not a stroke; it
-// has no material.
-enum class SpriteKind : uint8_t { kLeaf, kBark, kSurface, kGraftal };
+// has no material. kSky: a stroke of the painted sky (sky.h), at infinity.
+enum class SpriteKind : uint8_t { kLeaf, kBark, kSurface, kGraftal, kSky };
 
 // A stroke shader ready to paint: its parameters, palette and edge table (the shader's own
 // stroke_fullness, tabulated once).
@@ -45,12 +45,14 @@ class MaterialTable {
     MaterialId leaf(uint32_t family) const { return {2 * family}; }
     MaterialId bark(uint32_t family) const { return {2 * family + 1}; }
     MaterialId surface(uint32_t material) const { return {2 * families_ + material}; }
+    // The painted sky's strokes (the scene has a /sky), after the surfaces.
+    MaterialId sky() const { return {2 * families_ + surfaces_}; }
     const SpriteMaterial& operator[](MaterialId id) const { return materials_[id.index]; }
     size_t size() const { return materials_.size(); }
 
   private:
-    uint32_t families_ = 0;
-    std::vector<SpriteMaterial> materials_;  // per family leaves then bark; then the surfaces
+    uint32_t families_ = 0, surfaces_ = 0;
+    std::vector<SpriteMaterial> materials_;  // per family leaves then bark; the surfaces; the sky
 };
 
 }  // namespace pleinair

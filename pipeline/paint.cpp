@@ -11,6 +11,7 @@
 #include "pipeline/composite.h"
 #include "pipeline/graftal_stage.h"
 #include "pipeline/imposter_stage.h"
+#include "pipeline/sky.h"
 #include "pipeline/sprites.h"
 
 namespace pleinair {
@@ -200,14 +201,35 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
     stage("paint");
     t = PassTimer();
     Frame frame = make_frame(cam, plan.aovs);
-    const StrokeLayer strokes =
-        paint_strokes(shot, sprites, bins, plan, rs, frame, &settings.progress);
+    StrokeLayer strokes = paint_strokes(shot, sprites, bins, plan, rs, frame, &settings.progress);
     rep.fragments = strokes.fragments;
     rep.passes.push_back({"paint", true,
                           "strokes front to back, tiles in parallel, each until it is covered",
                           t.ms(), std::to_string(rep.fragments) + " fragments"});
+    // The painted sky behind every stroke, where they leave it in view.
+    StrokeLayer sky;
+    SpriteSet sky_set;
+    if (plan.sky) {
+        stage("sky");
+        t = PassTimer();
+        FramePlan sky_plan = plan;
+        sky_plan.aovs = false;  // the sky is the background in the AOVs
+        sky_set = sky_sprites(shot, view, plan, rs);
+        const TileBins sky_bins =
+            bin_sprites(sky_set.sprites, depth_order(sky_set.sprites), cam.width, cam.height);
+        sky = paint_strokes(shot, sky_set, sky_bins, sky_plan, rs, frame, nullptr, &strokes);
+        rep.sky_sprites = sky_set.sprites.size();
+        rep.fragments += sky.fragments;
+        rep.passes.push_back({"sky", true,
+                              "the sky's strokes turned with the camera, painted where the "
+                              "strokes in front leave light through",
+                              t.ms(),
+                              std::to_string(sky_set.sprites.size()) + " of " +
+                                  std::to_string(shot.sky.size()) + " sky strokes in view, " +
+                                  std::to_string(sky.fragments) + " fragments"});
+    }
     t = PassTimer();
-    paint_background(shot.scene, cam, strokes, frame);
+    paint_background(shot.scene, cam, strokes, frame, plan.sky ? &sky : nullptr);
     rep.passes.push_back(
         {"background", true,
          shot.scene.background.canvas ? "canvas colour" : "sky and ground seen from the camera",
@@ -224,6 +246,21 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
     t = PassTimer();
     composite_strokes(strokes, plan, frame);
     rep.passes.push_back({"composite", true, "the strokes over what lies under them", t.ms(), ""});
+    if (plan.trace && plan.sky) {
+        // The sky's strokes are traced where no nearer stroke is: after the others' indices.
+        const uint32_t offset = static_cast<uint32_t>(sprites.sprites.size());
+        sprites.sprites.insert(sprites.sprites.end(), sky_set.sprites.begin(),
+                               sky_set.sprites.end());
+        StrokeLayer& s = strokes;
+        for (size_t p = 0; p < s.first.size(); ++p) {
+            const auto lift = [&](uint32_t i) { return i == ~0u ? i : i + offset; };
+            if (s.first[p] == ~0u)
+                s.first[p] = lift(sky.first[p]), s.second[p] = lift(sky.second[p]),
+                s.first_weight[p] = sky.first_weight[p];
+            else if (s.second[p] == ~0u)
+                s.second[p] = lift(sky.first[p]);
+        }
+    }
     if (plan.trace)
         rep.trace = std::make_shared<FrameReport::Trace>(
             FrameReport::Trace{std::move(sprites.sprites), strokes.first, strokes.second,

@@ -91,6 +91,38 @@ void visit_water(WaterDesc& w, V& v) {
 }
 
 template <class V>
+void visit_sky(SkyDesc& k, V& v) {
+    SkyParams& p = k.params;
+    v.text("shader", k.shader_name,
+           "Stroke shader preset (name or file) of the sky's strokes: their mask, sub-stroke "
+           "colour, aspect (stroke_aspect, length over width) and jitter; its palette, picked by "
+           "lightness, holds the sky's colours (dark: shaded cloud, mid: clear sky, light: lit "
+           "cloud and haze). Its sprite_size is not read: the sky's is stroke_size here.");
+    v.text("palette", k.palette_name, "Palette instead of the shader's; empty: the shader's.");
+    v.seed("seed", k.seed, "Seeds where the sky's strokes lie and their labels.");
+    v.real("cloud_cover", p.cloud_cover, {0, 1}, "", "Share of the sky in cloud.");
+    v.real("cloud_scale", p.cloud_scale, {0.05, 20}, "",
+           "Size of the clouds: 1 puts a few across a 45-degree view, 2 doubles them.");
+    v.real("cloud_softness", p.cloud_softness, {0.001, 0.5}, "noise",
+           "Band of the cloud noise over which a cloud's edge fades into clear sky.");
+    v.real("stroke_size", p.stroke_size, {1, 45}, "deg",
+           "Angle of sky a base stroke spans along its length; small strokes along cloud edges "
+           "are half as long.");
+    v.real("detail", p.detail, {0, 1}, "",
+           "How many of the small strokes along cloud edges are kept; 0: none.");
+    v.real("haze", p.haze, {0.001, 1}, "sine of elevation",
+           "Band above the horizon over which clouds thin out and strokes fade into the "
+           "background's haze.");
+    v.real("sun_glow", p.sun_glow, {0, 1}, "lightness", "Lightness added around the sun.");
+    v.real("zenith_lightness", p.zenith_lightness, {0, 1}, "lightness",
+           "Clear sky straight up (looked up in the palette).");
+    v.real("horizon_lightness", p.horizon_lightness, {0, 1}, "lightness",
+           "Clear sky at the horizon.");
+    v.real("cloud_light", p.cloud_light, {0, 1}, "lightness", "A cloud's side facing the sun.");
+    v.real("cloud_shade", p.cloud_shade, {0, 1}, "lightness", "A cloud's side away from it.");
+}
+
+template <class V>
 void visit_rock(RockDesc& r, V& v) {
     v.seed("seed", r.seed, "Seeds the rock's shape and strokes.");
     v.vector("position", r.position, "world units",
@@ -273,6 +305,10 @@ void visit_scene(SceneDesc& s, V& v) {
         v.real("texture", b.texture, {0, 1}, "", "Slow noise on the background's lightness.");
         v.boolean("canvas", b.canvas, "Paint one canvas colour instead of sky and ground.");
         v.color("canvas_color", b.canvas_color, "The canvas colour.");
+    });
+    v.object("sky", "A painted sky of brushed strokes over the background; absent: none", [&] {
+        s.sky.present = true;
+        visit_sky(s.sky, v);
     });
     v.object("atmosphere", "Atmospheric perspective (IV.6); absent: none", [&] {
         s.has_atmosphere = true;
@@ -954,6 +990,20 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
     if (camera_read)
         for (Problem& p : validate_circles(s.circles, "/camera")) problems.push_back(std::move(p));
     parse_landscape(doc, source, s, problems, plain);
+    if (s.sky.present)
+        load_into(problems, source, "/sky/shader", [&] {
+            const ShaderPreset sp =
+                load_shader_preset(near_scene(s.sky.shader_name, source), source, "/sky/shader");
+            s.sky.shader = sp.params;
+            const std::string pal = s.sky.palette_name.empty() ? sp.palette : s.sky.palette_name;
+            if (pal.empty())
+                throw InputError(source, "/sky/palette",
+                                 "the shader names no palette; give one here");
+            load_into(problems, source, "/sky/palette", [&] {
+                s.sky.palette = shader_palette(
+                    load_palette(near_scene(pal, source), source, "/sky/palette"), s.sky.shader);
+            });
+        });
 
     if (std::string why = make_camera(s.camera_params, s.camera); !why.empty())
         problems.push_back({"/camera", why});

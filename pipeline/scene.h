@@ -19,6 +19,7 @@
 #include "pipeline/particle_files.h"
 #include "pipeline/settings.h"
 #include "shading/color.h"
+#include "shading/sky.h"
 #include "shading/stroke_shader.h"
 #include "shading/surface_shader.h"
 
@@ -37,6 +38,18 @@ struct Background {
     float texture = 0.06f;           // amplitude of the slow noise on the lightness
     bool canvas = false;
     Color canvas_color{0.86f, 0.82f, 0.72f};
+};
+
+// A painted sky: brushed strokes over the background's gradient, at infinity (they follow the
+// camera's rotation, never its translation), shaded by sky_sample (shading/sky.h) and painted by
+// a stroke shader preset and its palette.
+struct SkyDesc {
+    bool present = false;
+    SkyParams params;
+    uint64_t seed = 1;
+    std::string shader_name = "corot-sky", palette_name;  // as written
+    StrokeShaderParams shader;
+    Palette palette;
 };
 
 // Distances along the view axis between which atmospheric perspective grows from 0 to 1.
@@ -146,6 +159,7 @@ struct SceneDesc {
     std::vector<SunKey> sun_track;             // empty: the sun stays at sun_direction
     bool sun_casts_shadows = false;
     Background background;
+    SkyDesc sky;
     bool has_atmosphere = false;
     Atmosphere atmosphere;
     BuildSettings build;

@@ -258,6 +258,13 @@ Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> t
                                    std::to_string(edges) + " edges"});
     }
 
+    if (shot.scene.sky.present && !shot.scene.background.canvas) {
+        PassTimer timer;
+        shot.sky = build_sky_strokes(shot.scene);
+        shot.passes.push_back({"sky", true, "the painted sky's strokes over the sky's directions",
+                               timer.ms(), std::to_string(shot.sky.size()) + " strokes"});
+    }
+
     const ShotPlan& plan = shot.plan;
     const bool still_sun = plan.shadows && !plan.sun_moves;
     if (plan.underpaint || plan.shadows) {

@@ -16,6 +16,7 @@
 #include "pipeline/rays.h"
 #include "pipeline/report.h"
 #include "pipeline/scene.h"
+#include "pipeline/sky.h"
 
 namespace pleinair {
 
@@ -121,6 +122,9 @@ struct Shot {
     // The meshes that carry graftal imposters on their silhouettes (imposter_stage.h); their
     // sprites' items count on after the graftals'.
     std::vector<ImposterObject> imposters;
+
+    // The painted sky's strokes (sky.h); empty without a /sky.
+    SkyStrokes sky;
 
     std::vector<PassReport> passes;  // what the build did, for --explain
 

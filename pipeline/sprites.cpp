@@ -150,12 +150,7 @@ void shade_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in,
         const float f = std::sqrt(in.lod.growth);
         out.k.frequ_s *= f, out.k.frequ_t *= f;
     }
-    if (c.plan.noise_reseed) {
-        // Boiling, for the coherence bench: every stroke's noise moves each frame.
-        const float shift = 256.0f * tree_hash01(c.plan.noise_reseed);
-        out.k.offset_s = std::fmod(out.k.offset_s + shift, 256.0f);
-        out.k.offset_t = std::fmod(out.k.offset_t + 0.618f * shift, 256.0f);
-    }
+    reseed_noise(out.k, c.plan.noise_reseed);
     out.material = mat;
 }
 
@@ -348,6 +343,13 @@ float grid_at(const ShadowGrid& g, float s, float t) {
     const float* r0 = &g[static_cast<size_t>(j) * kGrid + i];
     const float* r1 = r0 + kGrid;
     return (r0[0] * (1 - fx) + r0[1] * fx) * (1 - fy) + (r1[0] * (1 - fx) + r1[1] * fx) * fy;
+}
+
+void reseed_noise(StrokeConstants& k, uint32_t noise_reseed) {
+    if (!noise_reseed) return;
+    const float shift = 256.0f * tree_hash01(noise_reseed);
+    k.offset_s = std::fmod(k.offset_s + shift, 256.0f);
+    k.offset_t = std::fmod(k.offset_t + 0.618f * shift, 256.0f);
 }
 
 void sprite_extent(const Sprite& sp, float& ex, float& ey) {

@@ -44,11 +44,15 @@ struct Sprite {
     StrokeConstants k;
 };
 
-// A particle's key, unique in its shot: item, kind and index.
+// A particle's key, unique in its shot: item, kind (3 bits) and index.
 inline uint64_t particle_key(uint32_t item, SpriteKind kind, uint32_t particle) {
-    return (uint64_t{item} << 34) | (uint64_t(kind) << 32) | particle;
+    return (uint64_t{item} << 35) | (uint64_t(kind) << 32) | particle;
 }
 inline uint64_t sprite_key(const Sprite& sp) { return particle_key(sp.item, sp.kind, sp.particle); }
+
+// Boiling, for the coherence bench (FrameSettings::noise_reseed): every stroke's noise moves by
+// an amount the reseed picks. 0 leaves it.
+void reseed_noise(StrokeConstants& k, uint32_t noise_reseed);
 
 // Half extents of a sprite's screen-aligned bounding box (the rotated rectangle's).
 void sprite_extent(const Sprite& sp, float& ex, float& ey);
