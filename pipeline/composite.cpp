@@ -21,11 +21,11 @@ namespace pleinair {
 
 namespace {
 
-// The background's colour towards pixel (x, y), and in `sky_share` how much of it is sky (the
-// painted sky's strokes cover that much of it).
-Color background_color(const Background& b, const Camera& cam, const Color lin[4], double x,
-                       double y, float& sky_share) {
-    glm::dvec3 dir = ray_direction(cam, x, y);
+// The background's colour in direction dir (unit), and in `sky_share` how much of it is sky
+// (the painted sky's strokes cover that much of it). `lin`: zenith or canvas, sky horizon,
+// ground horizon, ground near, linear.
+Color background_color(const Background& b, const Color lin[4], const glm::dvec3& dir,
+                       float& sky_share) {
     float e = static_cast<float>(dir.y);
     Color c;
     sky_share = 0;
@@ -542,12 +542,27 @@ Frame make_frame(const Camera& cam, bool aovs) {
     return frame;
 }
 
+namespace {
+void background_linear(const Background& bg, Color lin[4]) {
+    lin[0] = srgb_to_linear(bg.canvas ? bg.canvas_color : bg.sky_zenith);
+    lin[1] = srgb_to_linear(bg.sky_horizon);
+    lin[2] = srgb_to_linear(bg.ground_horizon);
+    lin[3] = srgb_to_linear(bg.ground_near);
+}
+}  // namespace
+
+Color background_at(const Background& bg, const glm::dvec3& dir) {
+    Color lin[4];
+    background_linear(bg, lin);
+    float share;
+    return background_color(bg, lin, dir, share);
+}
+
 void paint_background(const SceneDesc& scene, const Camera& cam, const StrokeLayer& strokes,
                       Frame& frame, const StrokeLayer* sky) {
     const Background& bg = scene.background;
-    const Color lin[4] = {srgb_to_linear(bg.canvas ? bg.canvas_color : bg.sky_zenith),
-                          srgb_to_linear(bg.sky_horizon), srgb_to_linear(bg.ground_horizon),
-                          srgb_to_linear(bg.ground_near)};
+    Color lin[4];
+    background_linear(bg, lin);
     // The background is smooth (a gradient under slow noise): it is evaluated on a lattice of
     // every kBgStep-th pixel and interpolated bilinearly, 1/16 of the work.
     constexpr int kBgStep = 4;
@@ -558,8 +573,8 @@ void paint_background(const SceneDesc& scene, const Camera& cam, const StrokeLay
     tbb::parallel_for(0, gh, [&](int j) {
         for (int i = 0; i < gw; ++i) {
             const size_t at = static_cast<size_t>(j) * gw + i;
-            lattice[at] =
-                background_color(bg, cam, lin, kBgStep * i + 0.5, kBgStep * j + 0.5, share[at]);
+            lattice[at] = background_color(
+                bg, lin, ray_direction(cam, kBgStep * i + 0.5, kBgStep * j + 0.5), share[at]);
         }
     });
     tbb::parallel_for(0, cam.height, [&](int y) {

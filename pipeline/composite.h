@@ -8,6 +8,7 @@
 #include "pipeline/bin.h"
 #include "pipeline/frame.h"
 #include "pipeline/frame_plan.h"
+#include "pipeline/rays.h"
 #include "pipeline/sprites.h"
 
 namespace pleinair {
@@ -54,6 +55,18 @@ StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& sprites, const Tile
 // the scene has them.
 void paint_background(const SceneDesc& scene, const Camera& cam, const StrokeLayer& strokes,
                       Frame& frame, const StrokeLayer* sky = nullptr);
+
+// The background's colour (linear, before its lattice and the painted sky) in a unit
+// direction: what a reflected ray that meets nothing sees when the scene has no painted sky.
+Color background_at(const Background& background, const glm::dvec3& direction);
+
+// The flat palette colour the underpainting gives a camera-scene hit `h` at `world` (normal n,
+// seen along dir): its material's palette at a middle-depth stroke's lightness, in the sun's
+// light and shadow, pushed into the distance when the plan has atmosphere; water mirrors what
+// it reflects when the plan has reflections.
+Color underpaint_color(const Shot& shot, const FrameView& view, const FramePlan& plan,
+                       const RenderSettings& settings, const RayScene* sun_rays, const RayHit& h,
+                       const glm::dvec3& world, glm::vec3 n, const glm::dvec3& dir);
 
 // A flat palette colour and a depth where the camera sees terrain, water, rocks or trunks, at
 // underpaint_scale of the resolution, so no sky shows between strokes, over the background.

@@ -70,6 +70,7 @@ struct FramePlan {
     bool graftals = false;   // some family or material is drawn in a graftal style
     bool imposters = false;  // some family or material carries graftal imposters
     bool sky = false;        // a painted sky (sky.h): its strokes under every other
+    bool reflections = false;  // still water mirrors what its reflected rays find
     bool trace = false;
     uint32_t noise_reseed = 0;
     std::vector<PassReport> decisions;

@@ -11,6 +11,7 @@
 #include "pipeline/composite.h"
 #include "pipeline/graftal_stage.h"
 #include "pipeline/imposter_stage.h"
+#include "pipeline/reflection.h"
 #include "pipeline/sky.h"
 #include "pipeline/sprites.h"
 
@@ -151,6 +152,18 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
              (sprites.shadow_rays ? ", " + std::to_string(sprites.shadow_rays) + " shadow rays"
                                   : "")});
 
+    if (plan.reflections) {
+        PassTimer tr;
+        const ReflectionReport r =
+            add_reflections(mirror_context(shot, view, plan, rs, sun_rays), sprites);
+        rep.reflection_rays = r.rays;
+        rep.passes.push_back(
+            {"reflections", true,
+             "each water stroke in view takes the colour its reflected ray finds (surfaces, "
+             "trunks, leaf strokes, the sky), by water's Fresnel reflectance",
+             tr.ms(),
+             std::to_string(r.strokes) + " water strokes, " + std::to_string(r.rays) + " rays"});
+    }
     if (plan.graftals) {
         // After the strokes' sprites, so their indices (and the shadow grids') stay as they are.
         PassTimer tg;

@@ -25,6 +25,7 @@ struct FrameReport {
     uint64_t graftal_sprites = 0;   // graftals drawn (graftal_stage.h)
     uint64_t imposter_sprites = 0;  // imposters drawn (imposter_stage.h)
     uint64_t sky_sprites = 0;       // strokes of the painted sky in view (sky.h)
+    uint64_t reflection_rays = 0;   // cast for still water's mirror (reflection.h)
     uint64_t shadow_rays = 0, underpaint_rays = 0;
     uint64_t fragments = 0;  // pixel samples evaluated by the stroke shader
     // Traced frames only (FrameSettings::trace): the frame's sprites, each pixel's two nearest

@@ -88,6 +88,15 @@ void visit_water(WaterDesc& w, V& v) {
     v.number("level", w.level, {-1e9, 1e9}, "world units",
              "Height of the still water; painted where the ground lies below it.");
     v.text("material", w.material_name, "Material of its strokes.");
+    v.real("reflection", w.reflection, {0, 1}, "",
+           "How much its strokes take the colour of what the water mirrors (terrain, rocks, "
+           "trunks, leaf strokes, the sky), by a reflected ray per stroke; scaled by water's "
+           "Fresnel reflectance, so the water darkens to its own colour towards the viewer. 0: "
+           "none, no ray.");
+    v.real("ripple", w.ripple, {0, 1}, "",
+           "How far ripples lean each stroke's mirror: its normal moves this share of the way "
+           "towards the stroke's random direction (0.02 is about a degree: a tree's reflection "
+           "stays whole but breaks at its edges).");
 }
 
 template <class V>
@@ -114,6 +123,9 @@ void visit_sky(SkyDesc& k, V& v) {
            "Band above the horizon over which clouds thin out and strokes fade into the "
            "background's haze.");
     v.real("sun_glow", p.sun_glow, {0, 1}, "lightness", "Lightness added around the sun.");
+    v.real("stroke_jitter", p.stroke_jitter, {0, 1}, "lightness",
+           "How much lighter or darker than the sky's field a stroke may be (peak to peak, "
+           "drawn from its label): the load of paint varying from stroke to stroke.");
     v.real("zenith_lightness", p.zenith_lightness, {0, 1}, "lightness",
            "Clear sky straight up (looked up in the palette).");
     v.real("horizon_lightness", p.horizon_lightness, {0, 1}, "lightness",

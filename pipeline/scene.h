@@ -107,6 +107,10 @@ struct WaterDesc {
     SurfaceStrokeParams strokes;
     std::string material_name = "water";
     uint32_t material = 0;
+    // How much its strokes mirror (pipeline/reflection.h): what they show of the reflected
+    // world at grazing angles, scaled down towards the viewer by water's Fresnel reflectance.
+    float reflection = 0.85f;
+    float ripple = 0.02f;  // how far ripples lean a stroke's mirror normal, towards a random one
 };
 
 struct RockDesc {

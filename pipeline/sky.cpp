@@ -121,8 +121,10 @@ SpriteSet sky_sprites(const Shot& shot, const FrameView& view, const FramePlan& 
         sp.kind = SpriteKind::kSky;
         sp.particle = static_cast<uint32_t>(i);
         sp.k = stroke_constants(shader, 1.0f, 0.0f, 0.5f, label, 0, 1.0f, 0.0f, 0.0f, false, false);
-        sp.k.lightness = s.lightness;
-        const float f = stroke_frequency(shader, 0.0f, s.lightness);
+        // Each stroke a little lighter or darker than the field: the brush's own load of paint.
+        const float l = clamp01(s.lightness + p.stroke_jitter * (label_hash(label, 6) - 0.5f));
+        sp.k.lightness = l;
+        const float f = stroke_frequency(shader, 0.0f, l);
         sp.k.frequ_s = f * shader.s_frequ_scale, sp.k.frequ_t = f * shader.t_frequ_scale;
         if (!plan.sub_stroke) sp.k.sub_amt = 0;
         reseed_noise(sp.k, plan.noise_reseed);

@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "pipeline/composite.h"
+#include "pipeline/reflection.h"
 #include "pipeline/shot.h"
 
 namespace pleinair {
@@ -39,7 +40,8 @@ struct Underpainting {
     size_t cell(int i, int j) const { return static_cast<size_t>(j) * w + i; }
 };
 
-// The colour under the strokes where a camera ray hits a surface.
+}  // namespace
+
 Color underpaint_color(const Shot& shot, const FrameView& view, const FramePlan& plan,
                        const RenderSettings& rs, const RayScene* sun_rays, const RayHit& h,
                        const glm::dvec3& world, glm::vec3 n, const glm::dvec3& dir) {
@@ -67,8 +69,13 @@ Color underpaint_color(const Shot& shot, const FrameView& view, const FramePlan&
     StrokeConstants k =
         stroke_constants(*m.shader, n_dot_l, 0.5f, 0.5f, 0.5f, 0, 1.0f, d, 0.0f, false,
                          plan.atmosphere && has_atmosphere_effect(*m.shader));
+    if (plan.reflections && !vs.terrain && mat == shot.materials.surface(scene.water.material))
+        mirror(mirror_context(shot, view, plan, rs, sun_rays),
+               RayOrigin{world, n, true, shot.surface_lift}, n, n, dir, k);
     return finish_color(k, palette_lookup(*m.palette, l));
 }
+
+namespace {
 
 // Which cells some open pixel interpolates from (every cell when `all`).
 std::vector<uint8_t> needed_cells(const Underpainting& u, const StrokeLayer& strokes, bool all) {

@@ -21,6 +21,7 @@ struct SkyParams {
     float detail = 1.0f;           // share of the small strokes kept along cloud edges
     float haze = 0.12f;            // sine of elevation over which clouds fade into the horizon
     float sun_glow = 0.25f;        // lightness added around the sun
+    float stroke_jitter = 0.16f;   // lightness a stroke may differ from its neighbours (label)
     float zenith_lightness = 0.46f, horizon_lightness = 0.74f;  // clear sky
     float cloud_light = 0.90f, cloud_shade = 0.30f;             // a cloud's lit and shaded sides
 };

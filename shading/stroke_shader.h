@@ -194,6 +194,10 @@ struct StrokeConstants {
     // the palette's.
     Color own{0.0f};
     float own_amount = 0;
+    // What the stroke mirrors (still water, pipeline/reflection.h), linear and premultiplied by
+    // its share: the palette's colour times mirror_keep, plus this. Black and 1: no mirror.
+    Color mirror{0.0f};
+    float mirror_keep = 1;
 };
 
 // The per-sprite part of the shader. `shadow` is 1 when lit (the still renderer has no shadow
@@ -264,10 +268,11 @@ inline float stroke_noise(const StrokeConstants& k, float s, float t, int octave
     return stroke_noise(noise_of(k), s, t, octaves);
 }
 
-// The particle's own colour, tint, then atmospheric perspective: what happens to a palette
-// colour after the lookup.
+// The particle's own colour, what it mirrors, tint, then atmospheric perspective: what happens
+// to a palette colour after the lookup.
 inline Color finish_color(const StrokeConstants& k, Color c) {
     if (k.own_amount > 0.0f) c = mix(c, scale_keeping_hue(k.own, luminance(c)), k.own_amount);
+    if (k.mirror_keep < 1.0f) c = c * k.mirror_keep + k.mirror;
     c = c * k.tint_keep + k.tint;
     if (k.atmosphere) {
         c = c * k.hue_keep + k.hue;

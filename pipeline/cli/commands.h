@@ -60,7 +60,7 @@ struct AnimateCommand {
 };
 
 struct BenchCommand {
-    std::string what;  // "accuracy" or "coherence"
+    std::string what;  // "accuracy", "coherence" or "look"
     std::string scene;
     int repeat = 3;  // renders per setting; the median time is reported
     std::vector<std::string> set;
@@ -81,6 +81,7 @@ int run_render(const RenderCommand& cmd);
 int run_animate(const AnimateCommand& cmd);
 int run_bench_accuracy(const BenchCommand& cmd);
 int run_bench_coherence(const BenchCommand& cmd);
+int run_bench_look(const BenchCommand& cmd);
 
 struct SceneDesc;
 // The frames of an animated scene that --frames TEXT names (all of its track's when empty);

@@ -193,9 +193,10 @@ Command add_bench(CLI::App& app) {
     CLI::App* b = app.add_subcommand("bench", "Measure what accuracy costs in time");
     b->add_option("what", c->what,
                   "What to measure: accuracy (each quality setting's time and error), "
-                  "coherence (flicker, pops, order swaps, silhouette of an animated shot)")
+                  "coherence (flicker, pops, order swaps, silhouette of an animated shot), look "
+                  "(brush texture of the sky against the trees, banding, water's mirror)")
         ->required()
-        ->check(CLI::IsMember({"accuracy", "coherence"}));
+        ->check(CLI::IsMember({"accuracy", "coherence", "look"}));
     b->add_option("scene", c->scene, "Scene name or JSON file")->required();
     b->add_option("--repeat", c->repeat, "Renders per setting (median time reported)")
         ->check(CLI::Range(1, 1000));
@@ -206,7 +207,9 @@ Command add_bench(CLI::App& app) {
                 "coherence: also a row per frame (area and L* on and off, swaps)");
 
     return {b, [=] {
-                return c->what == "coherence" ? run_bench_coherence(*c) : run_bench_accuracy(*c);
+                return c->what == "coherence" ? run_bench_coherence(*c)
+                       : c->what == "look"    ? run_bench_look(*c)
+                                              : run_bench_accuracy(*c);
             }};
 }
 

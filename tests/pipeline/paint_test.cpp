@@ -118,8 +118,8 @@ TEST(Paint, PlanSkipsWhatTheSceneDoesNotNeed) {
     int skipped = 0;
     for (const auto& d : plan.decisions) skipped += !d.ran;
     // bark, tint, atmosphere, aovs, shadows, underpaint, level of detail, graftals, imposters,
-    // sky
-    EXPECT_EQ(skipped, 10);
+    // sky, reflections
+    EXPECT_EQ(skipped, 11);
     EXPECT_FALSE(plan.imposters);
     // With no tint and no atmosphere the picture changes (they did something before).
     SceneDesc full = parse_scene(scene_text(kCamera, kTrees), "test");

@@ -10,6 +10,7 @@
 
 #include "pipeline/error.h"
 #include "pipeline/image_io.h"
+#include "pipeline/look.h"
 #include "pipeline/paint.h"
 #include "pipeline/shot.h"
 
@@ -161,6 +162,36 @@ TEST(SkyStage, BadKeysNameTheKey) {
     EXPECT_NE(error_of(R"({"palette": "no-such-palette"})").find("/sky/palette"),
               std::string::npos);
     EXPECT_NE(error_of(R"({"clouds": 1})").find("/sky/clouds"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace pleinair
+
+namespace pleinair {
+namespace {
+
+// The look's measures (look.h) on the small Mortefontaine with and without its painted sky:
+// the sky carries brush texture at the scale of its strokes, and no bands in 8 bits.
+TEST(SkyStage, BrushesTheSkyWithoutBanding) {
+    const auto file = PLEINAIR_SOURCE_DIR "/tests/golden/mortefontaine-sky/scene.json";
+    auto measure = [&](bool sky, double& run) {
+        SceneDesc scene = load_scene(file);
+        scene.sky.present = sky;
+        const Shot shot = build_shot(scene);
+        const FrameView view = still_view(shot.scene);
+        const Frame f = paint_frame(shot, view, scene_frame_settings(shot.scene, true));
+        const LookRegions r = look_regions(shot, view, f);
+        uint64_t n = 0;
+        const double t = brush_texture(frame_lightness(f), f.width, f.height, r.sky, 4, &n);
+        EXPECT_GT(n, 2000u);
+        run = mean_flat_run(f, r.sky);
+        return t;
+    };
+    double run_with = 0, run_without = 0;
+    const double with = measure(true, run_with), without = measure(false, run_without);
+    EXPECT_GT(with, 3.0 * without) << with << " vs " << without;
+    EXPECT_LT(run_with, 3.0);
+    EXPECT_GT(run_without, 2.0 * run_with) << run_without << " vs " << run_with;
 }
 
 }  // namespace

@@ -1,0 +1,46 @@
+// `pleinair bench look SCENE`: the look's measures of a still (look.h), one table row.
+#include "pipeline/look.h"
+
+#include <cstdio>
+
+#include "pipeline/cli/commands.h"
+#include "pipeline/paint.h"
+#include "pipeline/presets.h"
+#include "pipeline/shot.h"
+
+namespace pleinair {
+
+int run_bench_look(const BenchCommand& cmd) {
+    const std::string file = resolve_preset("scenes", cmd.scene, "SCENE").string();
+    const SceneDesc scene = load_scene(file, cmd.set);
+    const Shot shot = build_shot(scene);
+    const FrameView view = still_view(shot.scene);
+    PassTimer timer;
+    const Frame f = paint_frame(shot, view, scene_frame_settings(shot.scene, true));
+    const double ms = timer.ms();
+    const LookRegions r = look_regions(shot, view, f);
+    const std::vector<float> l = frame_lightness(f);
+    uint64_t sky_px = 0, tree_px = 0, pairs = 0;
+    const double sky2 = brush_texture(l, f.width, f.height, r.sky, 2, &sky_px);
+    const double trees2 = brush_texture(l, f.width, f.height, r.trees, 2, &tree_px);
+    const double sky8 = brush_texture(l, f.width, f.height, r.sky, 8);
+    const double trees8 = brush_texture(l, f.width, f.height, r.trees, 8);
+    const double mirror = mirror_correlation(l, f.width, f.height, r.water, &pairs);
+    std::string sets;
+    for (const std::string& s : cmd.set) sets += (sets.empty() ? " " : ", ") + s;
+    std::printf(
+        "| scene | L* texture 5 px: sky / trees | 17 px: sky / trees | sky over trees, 5 / 17 "
+        "px | sky pixels | sky: mean flat run, px | water vs mirrored bank: correlation "
+        "(pairs) | frame |\n|---|---:|---:|---:|---:|---:|---:|---:|\n");
+    std::printf(
+        "| %s%s | %.2f / %.2f | %.2f / %.2f | %.2f / %.2f | %llu | %.2f | %.3f (%llu) | "
+        "%.0f ms |\n",
+        cmd.scene.c_str(), sets.c_str(), sky2, trees2, sky8, trees8,
+        trees2 > 0 ? sky2 / trees2 : 0.0, trees8 > 0 ? sky8 / trees8 : 0.0,
+        static_cast<unsigned long long>(sky_px), mean_flat_run(f, r.sky), mirror,
+        static_cast<unsigned long long>(pairs), ms);
+    (void)tree_px;
+    return 0;
+}
+
+}  // namespace pleinair
