@@ -13,7 +13,9 @@
 #include <memory>
 
 #include "pipeline/shot.h"
+#include "shading/canvas.h"
 #include "shading/curves.h"
+#include "shading/pigment.h"
 #include "shading/portable_math.h"
 #include "shading/stroke_kernel.h"
 
@@ -116,8 +118,9 @@ struct TileLayer {
     float cutoff = 0;
     int saturated = 0;  // pixels whose transmittance fell to the cutoff
     std::array<float, 3 * kTile * kTile> color{};
-    std::array<float, kTile * kTile> through;   // through every stroke taken, held or not
-    std::array<uint32_t, kTile * kTile> front;  // sprite index of the AOVs, or kNone
+    std::array<float, kTile * kTile> through;        // through every stroke taken, held or not
+    std::array<float, 4 * kTile * kTile> pigment{};  // pigment mixing: concentrations gathered
+    std::array<uint32_t, kTile * kTile> front;       // sprite index of the AOVs, or kNone
     // The coherence bench's trace: the two nearest strokes over 5% opaque (filled when traced),
     // and the weight of the first's being in front of the second (1 in plain order).
     std::array<uint32_t, kTile * kTile> first, second;
@@ -219,21 +222,35 @@ struct TilePainter {
     int n;  // samples per pixel axis
     TileLayer& layer;
     StrokeLayer& out;
+    const PigmentTable* pigments = nullptr;  // pigment mixing
+    const CanvasWeave* canvas = nullptr;     // a canvas weave catching the strokes' edges
     uint64_t fragments = 0;
+
+    // Adds a stroke's colour at pixel li with weight w: in linear RGB, or as paint (its
+    // pigment concentrations apart, the residual where the colour goes).
+    void add(size_t li, Color col, float w) {
+        if (pigments) {
+            const PigmentLatent z = pigments->encode(col);
+            float* p = &layer.pigment[4 * li];
+            for (int k = 0; k < 4; ++k) p[k] += z.c[k] * w;
+            col = z.residual;
+        }
+        float* c = &layer.color[3 * li];
+        c[0] += col.x * w;
+        c[1] += col.y * w;
+        c[2] += col.z * w;
+    }
 
     // Premultiplied "under" of one stroke fragment: it shows through what lies in front (or,
     // while the camera moves, is held to blend with its neighbours in distance: TileLayer).
     void composite(int x, int y, Color col, float a, uint32_t idx) {
+        if (canvas) a = canvas_edge(a, canvas->at(x, y), rs.canvas_weave);
         const size_t li = layer.at(x, y);
         if (layer.soft) return hold(li, col, a, idx);
         float& through = layer.through[li];
         const bool was_open = through > layer.cutoff;
         trace(li, a, idx);
-        const float w = through * a;
-        float* c = &layer.color[3 * li];
-        c[0] += col.x * w;
-        c[1] += col.y * w;
-        c[2] += col.z * w;
+        add(li, col, through * a);
         if (plan.aovs && a > 0.5f && layer.front[li] == TileLayer::kNone) layer.front[li] = idx;
         through *= 1.0f - a;
         layer.settle(li, was_open);
@@ -261,10 +278,7 @@ struct TilePainter {
             // Nothing held here and no later stroke of the tile can blend with it: settled at
             // once, as plain "over" would.
             const float w = layer.settled[li] * a;
-            float* c = &layer.color[3 * li];
-            c[0] += col.x * w;
-            c[1] += col.y * w;
-            c[2] += col.z * w;
+            add(li, col, w);
             layer.gathered[li] += w;
             layer.settled[li] *= 1.0f - a;
         } else {
@@ -295,10 +309,7 @@ struct TilePainter {
             }
         }
         const float w = light * f.a;
-        float* c = &layer.color[3 * li];
-        c[0] += f.r * w;
-        c[1] += f.g * w;
-        c[2] += f.b * w;
+        add(li, Color(f.r, f.g, f.b), w);
         layer.gathered[li] += w;
         layer.settled[li] *= 1.0f - f.a;
         std::copy(h + 1, h + count, h);
@@ -447,6 +458,7 @@ struct TilePainter {
                 if (!layer.blended[li] || !(gathered > 0.0f)) continue;
                 const float scale = cover / gathered;
                 for (int k = 0; k < 3; ++k) layer.color[3 * li + k] *= scale;
+                for (int k = 0; k < 4; ++k) layer.pigment[4 * li + k] *= scale;
             }
     }
 
@@ -457,6 +469,7 @@ struct TilePainter {
             for (int x = layer.x0; x < layer.x0 + layer.w; ++x) {
                 const size_t li = layer.at(x, y), pi = static_cast<size_t>(y) * frame.width + x;
                 std::copy_n(&layer.color[3 * li], 3, &out.color[3 * pi]);
+                if (pigments) std::copy_n(&layer.pigment[4 * li], 4, &out.pigment[4 * pi]);
                 out.through[pi] = layer.through[li];
                 if (plan.trace) {
                     out.first[pi] = layer.first[li], out.second[pi] = layer.second[li];
@@ -611,6 +624,10 @@ StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins
     const size_t npix = static_cast<size_t>(frame.width) * frame.height;
     out.color.assign(3 * npix, 0.0f);
     out.through.assign(npix, 1.0f);
+    if (plan.pigment) out.pigment.assign(4 * npix, 0.0f);
+    const PigmentTable* pigments = plan.pigment ? &PigmentTable::shared() : nullptr;
+    CanvasWeave weave;
+    if (plan.canvas) weave = make_canvas_weave(rs.canvas_thread_px);
     if (plan.trace) {
         out.first.assign(npix, ~0u), out.second.assign(npix, ~0u);
         out.first_weight.assign(npix, 1.0f);
@@ -650,7 +667,8 @@ StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins
             pool.resize(TileLayer::kHeld * kTile * kTile);
             layer->make_soft(0.5f * rs.order_blend_frames, speed_max, pool.data());
         }
-        TilePainter painter{shot, set, plan, rs, frame, n, *layer, out};
+        TilePainter painter{shot, set,    plan, rs,       frame,
+                            n,    *layer, out,  pigments, plan.canvas ? &weave : nullptr};
         for (auto it = bin.rbegin(); it != bin.rend(); ++it) {
             const Sprite& sp = set.sprites[*it];
             layer->range = sp.range;
@@ -673,7 +691,12 @@ StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins
     return out;
 }
 
-void composite_strokes(const StrokeLayer& strokes, const FramePlan& plan, Frame& frame) {
+void composite_strokes(const StrokeLayer& strokes, const FramePlan& plan, const RenderSettings& rs,
+                       Frame& frame) {
+    const bool paint = plan.pigment && !strokes.pigment.empty();
+    const PigmentTable* pigments = paint ? &PigmentTable::shared() : nullptr;
+    CanvasWeave weave;
+    if (plan.canvas) weave = make_canvas_weave(rs.canvas_thread_px);
     tbb::parallel_for(0, frame.height, [&](int y) {
         for (int x = 0; x < frame.width; ++x) {
             const size_t pi = static_cast<size_t>(y) * frame.width + x;
@@ -682,9 +705,29 @@ void composite_strokes(const StrokeLayer& strokes, const FramePlan& plan, Frame&
             float* px = &frame.rgba[4 * pi];
             // A covered pixel holds no background: what lies under adds at most the cutoff.
             const float under = strokes.covered(pi) ? 0.0f : t;
-            px[0] = c[0] + under * px[0];
-            px[1] = c[1] + under * px[1];
-            px[2] = c[2] + under * px[2];
+            Color out;
+            if (pigments) {
+                // The strokes' paint over what lies under them, mixed as paint: the latents'
+                // weights sum to one (a covered pixel's strokes are scaled up to it).
+                PigmentLatent z;
+                const float* p = &strokes.pigment[4 * pi];
+                for (int k = 0; k < 4; ++k) z.c[k] = p[k];
+                z.residual = Color(c[0], c[1], c[2]);
+                if (under > 0.0f) {
+                    const PigmentLatent u = pigments->encode(Color(px[0], px[1], px[2]));
+                    for (int k = 0; k < 4; ++k) z.c[k] += under * u.c[k];
+                    z.residual += u.residual * under;
+                } else if (t < 1.0f) {
+                    const float s = 1.0f / (1.0f - t);
+                    for (int k = 0; k < 4; ++k) z.c[k] *= s;
+                    z.residual *= s;
+                }
+                out = t < 1.0f ? pigments->decode(z) : Color(px[0], px[1], px[2]);
+            } else {
+                out = Color(c[0] + under * px[0], c[1] + under * px[1], c[2] + under * px[2]);
+            }
+            if (plan.canvas) out = canvas_show(out, weave.at(x, y), t, rs.canvas_weave);
+            px[0] = out.x, px[1] = out.y, px[2] = out.z;
             px[3] = (1.0f - t) + t * (strokes.covered(pi) ? 1.0f : px[3]);
             if (!plan.aovs) continue;
             frame.alpha[pi] = 1.0f - t;

@@ -27,7 +27,10 @@ struct StrokeLayer {
     float cutoff = 0;            // render/coverage_cutoff
     std::vector<float> color;    // 3 per pixel
     std::vector<float> through;  // 1 per pixel
-    uint64_t fragments = 0;      // pixel samples shaded
+    // Pigment mixing (FramePlan::pigment): 4 pigment concentrations gathered per pixel, their
+    // residual colour gathered in `color` (shading/pigment.h); empty otherwise.
+    std::vector<float> pigment;
+    uint64_t fragments = 0;  // pixel samples shaded
     // Traced frames only (FramePlan::trace): per pixel the sprite indices of the two nearest
     // strokes more than 5% opaque there, ~0u for none, and the weight of the first's order
     // when the two were blended as their eye distances crossed (1 when not).
@@ -78,6 +81,9 @@ uint64_t paint_underpainting(const Shot& shot, const FrameView& view, const Fram
 
 // The strokes over what the frame holds beneath them: equal to compositing every stroke, the
 // underpainting and the background back to front with "over", to within the cutoff.
-void composite_strokes(const StrokeLayer& strokes, const FramePlan& plan, Frame& frame);
+// With pigment mixing (plan.pigment) the strokes' paint and what lies under it mix as
+// pigments; with a canvas (plan.canvas) its weave shows where the paint is thin.
+void composite_strokes(const StrokeLayer& strokes, const FramePlan& plan,
+                       const RenderSettings& settings, Frame& frame);
 
 }  // namespace pleinair

@@ -98,6 +98,14 @@ FramePlan plan_frame(const Shot& shot, const FrameSettings& settings) {
         : !scene.water.present ? "the scene has no water"
         : !(scene.water.reflection > 0) ? "/water/reflection is 0"
                                         : "no camera scene to reflect");
+    plan.pigment = settings.render.pigment_mixing;
+    add("pigment mixing", plan.pigment,
+        plan.pigment ? "strokes mix as Kubelka-Munk pigments in a latent space"
+                     : "render/pigment_mixing is off: alpha blending in linear RGB");
+    plan.canvas = settings.render.canvas_weave > 0;
+    add("canvas", plan.canvas,
+        plan.canvas ? "a canvas weave under thin paint and at the strokes' edges"
+                    : "render/canvas_weave is 0");
     plan.bare_blend = settings.bare_blend;
     plan.trace = settings.trace;
     plan.noise_reseed = settings.noise_reseed;

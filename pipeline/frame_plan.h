@@ -71,6 +71,8 @@ struct FramePlan {
     bool imposters = false;  // some family or material carries graftal imposters
     bool sky = false;        // a painted sky (sky.h): its strokes under every other
     bool reflections = false;  // still water mirrors what its reflected rays find
+    bool pigment = false;      // strokes mix as pigments (shading/pigment.h)
+    bool canvas = false;       // a canvas weave under thin paint and at stroke edges
     bool trace = false;
     uint32_t noise_reseed = 0;
     std::vector<PassReport> decisions;

@@ -226,7 +226,9 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
         stage("sky");
         t = PassTimer();
         FramePlan sky_plan = plan;
-        sky_plan.aovs = false;  // the sky is the background in the AOVs
+        sky_plan.aovs = false;     // the sky is the background in the AOVs
+        sky_plan.pigment = false;  // its strokes blend among themselves, then lie under paint
+        sky_plan.canvas = false;
         sky_set = sky_sprites(shot, view, plan, rs);
         const TileBins sky_bins =
             bin_sprites(sky_set.sprites, depth_order(sky_set.sprites), cam.width, cam.height);
@@ -257,7 +259,7 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
              t.ms(), std::to_string(rep.underpaint_rays) + " camera rays"});
     }
     t = PassTimer();
-    composite_strokes(strokes, plan, frame);
+    composite_strokes(strokes, plan, rs, frame);
     rep.passes.push_back({"composite", true, "the strokes over what lies under them", t.ms(), ""});
     if (plan.trace && plan.sky) {
         // The sky's strokes are traced where no nearer stroke is: after the others' indices.

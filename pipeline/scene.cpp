@@ -399,6 +399,16 @@ void visit_scene(SceneDesc& s, V& v) {
                   "a stroke a silhouette uncovers or hides appears or disappears over that many "
                   "frames instead of in one (each frame changes it by at most 1 / this); 1 casts "
                   "them at the frame's time only. A still camera is unaffected.");
+        v.boolean("pigment_mixing", r.pigment_mixing,
+                  "Mix overlapping strokes as paint (Kubelka-Munk pigments in a latent space, "
+                  "after Sochorova and Jamriska 2021): a thin yellow over a blue turns green "
+                  "where alpha blending in linear RGB turns it grey. Costs a table of about a "
+                  "second per process and more per fragment (BENCHMARKS.md, \"Pigment\").");
+        v.real("canvas_weave", r.canvas_weave, {0, 1}, "",
+               "A canvas weave in the picture plane that shows through where paint is thin and "
+               "catches the strokes' soft edges; its strength, 0: none.");
+        v.real("canvas_thread_px", r.canvas_thread_px, {3, 64}, "px",
+               "Width of one canvas thread (3 at least: a thread needs its crown and two sides).");
         v.real("surface_density", s.build.surface_density, {0.05, 16}, "",
                "Surface particles per cluster, relative to the scene's; sprites shrink so the "
                "covered area stays the same.");

@@ -50,6 +50,11 @@ struct RenderSettings {
     // whole; 1 decides it at the frame's time alone. Stills are unaffected.
     int occlusion_frames = 4;
     GraftalRaster graftal_raster = GraftalRaster::kScanline;
+    // Strokes mix as pigments (shading/pigment.h) instead of alpha blending in linear RGB.
+    bool pigment_mixing = false;
+    // A canvas weave showing through thin paint and catching stroke edges; 0: none.
+    float canvas_weave = 0.0f;
+    float canvas_thread_px = 3.0f;  // width of a canvas thread, pixels
 };
 
 }  // namespace pleinair

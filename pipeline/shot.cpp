@@ -11,6 +11,7 @@
 #include <limits>
 
 #include "pipeline/graftal_stage.h"
+#include "shading/pigment.h"
 #include "shading/portable_math.h"
 
 namespace pleinair {
@@ -258,6 +259,15 @@ Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> t
                                    std::to_string(edges) + " edges"});
     }
 
+    if (shot.scene.render.pigment_mixing) {
+        // Process-wide and built once; here, so frames do not pay for it.
+        PassTimer timer;
+        PigmentTable::shared();
+        shot.passes.push_back({"pigment table", true,
+                               "concentrations of four Kubelka-Munk pigments over colour, and "
+                               "their mixtures (once per process)",
+                               timer.ms(), ""});
+    }
     if (shot.scene.sky.present && !shot.scene.background.canvas) {
         PassTimer timer;
         shot.sky = build_sky_strokes(shot.scene);

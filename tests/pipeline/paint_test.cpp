@@ -60,6 +60,28 @@ TEST(Paint, SameBytesOnOneAndTwoThreads) {
     expect_finite(one);
 }
 
+// Pigment mixing and the canvas (issue 13 §3): the same bytes on one and two threads, finite,
+// and each changes the picture (the plan says so).
+TEST(Paint, PigmentMixingAndCanvasSameBytesOnOneAndTwoThreads) {
+    SceneDesc s = parse_scene(scene_text(kCamera, kTrees), "test");
+    const Frame plain = paint(s);
+    s.render.pigment_mixing = true;
+    const Frame pigment = paint(s);
+    s.render.canvas_weave = 0.5f;
+    Frame one, two;
+    tbb::task_arena(1).execute([&] { one = paint(s, true); });
+    tbb::task_arena(2).execute([&] { two = paint(s, true); });
+    ASSERT_EQ(one.rgba.size(), two.rgba.size());
+    EXPECT_EQ(0, std::memcmp(one.rgba.data(), two.rgba.data(), one.rgba.size() * sizeof(float)));
+    expect_finite(one);
+    for (float v : one.rgba) ASSERT_TRUE(v >= 0.0f && v <= 1.0f);
+    EXPECT_NE(frame_srgb8(plain), frame_srgb8(pigment));
+    EXPECT_NE(frame_srgb8(pigment), frame_srgb8(one));
+    const FramePlan plan = plan_of(s);
+    EXPECT_TRUE(plan.pigment);
+    EXPECT_TRUE(plan.canvas);
+}
+
 // The instance transform the ray scenes use places a point exactly where the painter does.
 TEST(Paint, TreePlacementsLinearPartMatchesPlace) {
     BuiltTree b;
@@ -118,8 +140,8 @@ TEST(Paint, PlanSkipsWhatTheSceneDoesNotNeed) {
     int skipped = 0;
     for (const auto& d : plan.decisions) skipped += !d.ran;
     // bark, tint, atmosphere, aovs, shadows, underpaint, level of detail, graftals, imposters,
-    // sky, reflections
-    EXPECT_EQ(skipped, 11);
+    // sky, reflections, pigment mixing, canvas
+    EXPECT_EQ(skipped, 13);
     EXPECT_FALSE(plan.imposters);
     // With no tint and no atmosphere the picture changes (they did something before).
     SceneDesc full = parse_scene(scene_text(kCamera, kTrees), "test");

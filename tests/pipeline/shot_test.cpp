@@ -452,10 +452,10 @@ TEST(Composite, UnderTheStrokesOnlyWhereLightGetsThrough) {
     StrokeLayer half = open;
     half.through[0] = 0.5f;
     half.color[0] = 0.1f;
-    composite_strokes(half, plan, d);
+    composite_strokes(half, plan, RenderSettings{}, d);
     EXPECT_FLOAT_EQ(d.rgba[0], 0.1f + 0.5f * a.rgba[0]);
     EXPECT_FLOAT_EQ(d.rgba[4], a.rgba[4]);  // an open pixel keeps what lies under
-    composite_strokes(covered, plan, b);
+    composite_strokes(covered, plan, RenderSettings{}, b);
     EXPECT_EQ(b.rgba[0], 0.25f);
     EXPECT_EQ(b.rgba[3], 1.0f);
 }

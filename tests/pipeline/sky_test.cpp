@@ -37,7 +37,9 @@ SpriteSet sprites_of(const Shot& shot, const FrameView& view) {
 bool same(const Sprite& a, const Sprite& b) {
     return a.x == b.x && a.y == b.y && a.half_w == b.half_w && a.half_l == b.half_l &&
            a.ax == b.ax && a.ay == b.ay && a.fade == b.fade && a.range == b.range &&
-           a.particle == b.particle && std::memcmp(&a.k, &b.k, sizeof a.k) == 0;
+           a.particle == b.particle && a.k.lightness == b.k.lightness &&
+           a.k.frequ_s == b.k.frequ_s && a.k.frequ_t == b.k.frequ_t &&
+           a.k.offset_s == b.k.offset_s && a.k.offset_t == b.k.offset_t;
 }
 
 TEST(SkyStage, StrokesAreUnitDirectionsFromTheHorizonUpAndDeterministic) {
