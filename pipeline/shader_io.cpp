@@ -97,6 +97,23 @@ void visit_stroke_shader(P& p, V& v) {
         v.real("angle_jitter", p.angle_jitter, {0, 180}, "deg",
                "Rotation variation of the stroke on screen, by label.");
     });
+    v.object("crown", "A crown seen up close (leaf strokes; ours, past the thesis)", [&] {
+        v.real("sun_side", p.sun_side, {0, 1}, "",
+               "How much a leaf's side of the crown (facing the sun or away, seen from the "
+               "crown's centre locator) lightens or darkens it: lights gather on the sunlit "
+               "side. 0: the leaf's own light only.");
+        v.real("edge_shrink", p.edge_shrink, {0, 1}, "",
+               "Strokes shrink towards the crown's edge, by up to this share of their size.");
+        v.real("edge_break", p.edge_break, {0, 1}, "",
+               "Strokes beyond half the centre distance break into dabs (their noise threshold "
+               "rises), keeping down to 1 - this of their coverage at the edge.");
+        v.real("holes", p.holes, {0, 1}, "",
+               "About this share of the leaves at the crown's edge, fewer inwards and none "
+               "within half the centre distance, left out in clustered holes the sky shows "
+               "through. Their shadows stay.");
+        v.real("hole_frequ", p.hole_frequ, {0, 100}, "1/tree unit",
+               "Frequency of the noise that places those holes over the tree.");
+    });
 }
 
 template <class P, class V>

@@ -33,7 +33,9 @@ struct SpriteInput {
     size_t index = 0;
     const Color* own_color = nullptr;  // an imported particle's colour
     float own_amount = 0;
-    ParticleLod lod;  // what the level of detail does to it (IV.6, IV.7)
+    glm::vec3 from_center{0.0f};  // leaves: unit direction from the crown's centre (world)
+    bool hole = false;            // leaves: in a hole of the crown (not drawn)
+    ParticleLod lod;              // what the level of detail does to it (IV.6, IV.7)
 };
 
 // What every sprite of a frame shares.
@@ -73,10 +75,16 @@ bool sprite_size(const SpriteContext& c, const SpriteMaterial& m, const SpriteIn
     float w, l;
     stroke_px(c.cam, c.rs, *m.shader, in, pr.depth, crest, w, l);
     w *= in.lod.scale, l *= in.lod.scale;
+    float fade = in.lod.fade;
+    if (in.kind == SpriteKind::kLeaf) {
+        const float e = crown_edge_size(*m.shader, in.center_distance);
+        w *= e, l *= e;
+        fade *= crown_edge_fade(*m.shader, in.center_distance);
+    }
     if (!(w > 0.0f) || !(l > 0.0f) || !std::isfinite(w) || !std::isfinite(l)) return false;
     out.half_w = 0.5f * w;
     out.half_l = 0.5f * l;
-    out.fade = in.lod.fade;
+    out.fade = fade;
     return true;
 }
 
@@ -141,6 +149,12 @@ void shade_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in,
         }
     } else {
         out.object_id = in.tree_id + 1;
+        if (in.kind == SpriteKind::kLeaf && p.sun_side > 0.0f) {
+            const float side = 0.5f + 0.5f * glm::dot(in.from_center, c.sun);
+            out.k.lightness = crown_side_lightness(p, out.k.lightness, side);
+            const float f = stroke_frequency(p, in.center_distance, out.k.lightness);
+            out.k.frequ_s = f * p.s_frequ_scale, out.k.frequ_t = f * p.t_frequ_scale;
+        }
     }
     out.kind = in.kind;
     if (!c.plan.sub_stroke) out.k.sub_amt = 0;
@@ -206,6 +220,11 @@ SpriteInput sprite_input(const Shot& shot, size_t item, SpriteKind kind, size_t 
         in.branch_distance = L.branch_distance[j];
         in.label = L.label[j];
         in.tree_id = L.tree_id[j];
+        const glm::vec3 out = L.position[j] - b.tree.center;
+        const float len = glm::length(out);
+        if (len > 1e-6f && std::isfinite(len)) in.from_center = pl.turn(out / len);
+        in.hole =
+            crown_hole(p, L.position[j].x, L.position[j].y, L.position[j].z, L.center_distance[j]);
     }
     return in;
 }
@@ -395,6 +414,7 @@ SpriteSet make_sprites(const SpriteStageInput& input) {
             // particle's own (as the shot's light cache has it).
             RayOrigin o = origin;
             SpriteInput in = sprite_input(shot, i, kind, j, o, mat);
+            if (in.hole) return void(++out.culled);
             if (!apply_lod(c, i, j, in, o)) return void((++out.culled, ++out.faded));
             Sprite sp;
             sp.item = static_cast<uint32_t>(i), sp.particle = static_cast<uint32_t>(j);

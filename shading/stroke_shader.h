@@ -59,6 +59,12 @@ struct StrokeShaderParams {
     float size_jitter = 0.25f;   // relative, drawn from the label
     float stroke_aspect = 1.0f;  // length / width; bark strokes are long
     float angle_jitter = 40.0f;  // degrees, drawn from the label
+    // The crown seen up close (ours, issue 13 §4); 0 leaves the thesis's crown as it is.
+    float sun_side = 0.0f;     // lights gather on the crown's sunlit side, darks on the other
+    float edge_shrink = 0.0f;  // strokes smaller towards the crown's edge
+    float edge_break = 0.0f;   // ... and broken into dabs there
+    float holes = 0.0f;        // share of the outer crown opened into holes the sky shows through
+    float hole_frequ = 0.35f;  // frequency of those holes, per tree unit
 };
 
 // IV.4.1: N.L clamped, then outer leaves brightened and inner ones darkened through gains of
@@ -173,6 +179,38 @@ inline float stroke_size_jitter(const StrokeShaderParams& p, float label) {
 // A stroke's turn in radians drawn from its label: its sprite and its shadow caster share it.
 inline double stroke_angle_jitter(const StrokeShaderParams& p, float label) {
     return (label_hash(label, 2) - 0.5) * p.angle_jitter * M_PI / 180.0;
+}
+
+// The crown up close (issue 13 §4), from what a leaf particle carries: its lightness scaled by
+// which side of the crown it is on (side: 1 facing the sun, 0 away, from the direction from the
+// crown's centre), so the lights gather where Corot put them.
+inline float crown_side_lightness(const StrokeShaderParams& p, float lightness, float side) {
+    return clamp01(lightness * (1.0f + clamp01(p.sun_side) * (1.8f * clamp01(side) - 0.9f)));
+}
+
+// Its stroke's size factor: smaller towards the crown's edge.
+inline float crown_edge_size(const StrokeShaderParams& p, float center_distance) {
+    const float d = clamp01(center_distance);
+    return 1.0f - clamp01(p.edge_shrink) * d * d;
+}
+
+// The share of its coverage kept (a dry-brush fade): more broken towards the edge.
+inline float crown_edge_fade(const StrokeShaderParams& p, float center_distance) {
+    return 1.0f - clamp01(p.edge_break) * smoothstep(0.5f, 1.0f, center_distance);
+}
+
+// Whether the leaf at tree-local `position` lies in a hole of the crown: low-frequency noise
+// over the tree under a threshold that grows from none at half the centre distance to `holes`
+// at the edge, so holes cluster and open outwards, the same in every frame.
+inline bool crown_hole(const StrokeShaderParams& p, float px, float py, float pz,
+                       float center_distance) {
+    if (!(p.holes > 0.0f)) return false;
+    const float f = p.hole_frequ;
+    const float n = noise(px * f + 17.0f, py * f + 3.0f, pz * f + 41.0f);
+    // The noise lies mostly within 0.2..0.8: a threshold of 0.2 + 0.6 x removes about a
+    // share x of the leaves.
+    const float share = clamp01(p.holes) * smoothstep(0.5f, 1.0f, center_distance);
+    return share > 0.0f && n < 0.2f + 0.6f * share;
 }
 
 // Everything of a stroke that is constant over its sprite, computed once per sprite.
