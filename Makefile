@@ -15,7 +15,7 @@ FUZZ_BUILD ?= build-fuzz
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := tree_preset shader_preset palette scene set_value particle_file graftal imposter
 
-.PHONY: all deps build render test test-sanitize test-farm fuzz bench format reference golden clean
+.PHONY: all deps build render test test-sanitize test-farm fuzz bench format reference golden gallery clean
 
 all: build
 
@@ -88,6 +88,11 @@ reference: build
 	         $$0 ~ "<!-- BEGIN " kind " reference" {while ((getline l < ref) > 0) print l; skip=1}' \
 	        README.md > $(BUILD)/README.md && mv $(BUILD)/README.md README.md || exit 1; \
 	done
+
+# Paints docs/gallery.md's images again (every shipped scene and tree family, and the Corot
+# look beside the thesis's) and rewrites the page; look at them before committing.
+gallery: build
+	bash docs/gallery.sh $(BUILD)/pleinair
 
 # Repaints every golden image's reference (tests/golden/README.md): look at them before
 # committing.

@@ -1,0 +1,118 @@
+#!/usr/bin/env bash
+# Regenerates docs/gallery.md and its images (`make gallery`): every shipped scene and every
+# tree family in both styles at 640x360, and issue 13's Corot look beside the thesis's, each
+# image with the command that paints it. JPEG at quality 85 keeps each under 200 KB (checked).
+set -euo pipefail
+
+BIN=${1:-build/pleinair}
+OUT=docs/gallery
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+mkdir -p "$OUT"
+rm -f "$OUT"/*.jpg
+W=640 H=360
+SIZE="--set /camera/width=$W --set /camera/height=$H"
+MD="$TMP/gallery.md"
+
+# jpg PNG NAME: the image as docs/gallery/NAME.jpg, refused over 200 KB.
+jpg() {
+    oiiotool "$1" --compression jpeg:85 -o "$OUT/$2.jpg"
+    local bytes
+    bytes=$(stat -c %s "$OUT/$2.jpg")
+    if [ "$bytes" -gt 204800 ]; then
+        echo "docs/gallery.sh: $OUT/$2.jpg is $bytes bytes, over 200 KB" >&2
+        exit 1
+    fi
+}
+
+# The first frame a second into an animated scene (its own file or one it extends names a
+# track), or the still.
+frame_of() {
+    if grep -q '"track"' "presets/scenes/$1.json"; then echo "--frame 25"; fi
+}
+
+cat > "$MD" <<'EOF'
+# Gallery
+
+Every shipped scene and tree family, painted by the commands beside them (from the repository's
+root, after `make build`), at 640x360 and saved as JPEG. `make gallery` paints them again and
+rewrites this page; it refuses an image over 200 KB.
+
+## The Corot look against the thesis's (issue 13)
+
+`mortefontaine-thesis` is the default scene as pleinair painted it before issue 13 (the same
+bytes as the earlier default); `mortefontaine` is it now. Left the thesis's, right the Corot
+look.
+
+EOF
+
+# Full size, once each, for the crops.
+"$BIN" render mortefontaine-thesis -o "$TMP/thesis.png" > /dev/null
+"$BIN" render mortefontaine -o "$TMP/corot.png" > /dev/null
+"$BIN" render mortefontaine-paint -o "$TMP/paint.png" > /dev/null
+"$BIN" render mortefontaine-paint --set /render/canvas_weave=0 -o "$TMP/pigment.png" > /dev/null
+
+# pair NAME CROP RESIZE A B: A and B cut to CROP (WxH+X+Y), each resized, side by side.
+pair() {
+    oiiotool "$4" --cut "$2" --resize "$3" "$5" --cut "$2" --resize "$3" --mosaic 2x1 \
+        -o "$TMP/$1.png"
+    jpg "$TMP/$1.png" "$1"
+}
+pair whole 1920x1080+0+0 320x180 "$TMP/thesis.png" "$TMP/corot.png"
+pair sky 960x540+480+0 320x180 "$TMP/thesis.png" "$TMP/corot.png"
+pair water 960x160+240+620 480x80 "$TMP/thesis.png" "$TMP/corot.png"
+pair crown 560x700+1360+0 256x320 "$TMP/thesis.png" "$TMP/corot.png"
+pair pigment 480x360+1240+140 320x240 "$TMP/corot.png" "$TMP/pigment.png"
+pair canvas 320x240+1300+640 320x240 "$TMP/corot.png" "$TMP/paint.png"
+
+cat >> "$MD" <<'EOF'
+| | |
+|---|---|
+| The whole scene. `pleinair render mortefontaine-thesis -o thesis.png`, `pleinair render mortefontaine -o corot.png` | ![](gallery/whole.jpg) |
+| The sky (§1): the gradient under slow noise, and `corot-sky`'s strokes at infinity, lit from the sun's side, thinning into the horizon's haze. | ![](gallery/sky.jpg) |
+| The pond (§2): grey ticks, and strokes mirroring the far bank's trees, trunks and sky, darker towards the viewer. | ![](gallery/water.jpg) |
+| The birch up close (§4): light blots everywhere, and lights gathered on the sunlit (left) side, smaller broken strokes and holes at the crown's edge. | ![](gallery/crown.jpg) |
+| Alpha blending in linear RGB, and pigment mixing (§3, `pleinair render mortefontaine-paint --set /render/canvas_weave=0 -o pigment.png`): thin greens over the sky's blue-greys and creams mix towards yellow-olive as paint does. | ![](gallery/pigment.jpg) |
+| No canvas, and `/render/canvas_weave` 0.35 (§3, `pleinair render mortefontaine-paint -o paint.png`): the weave shows where the grass strokes are thin and catches their edges. | ![](gallery/canvas.jpg) |
+
+## Scenes
+
+| scene | command | image |
+|---|---|---|
+EOF
+
+for f in presets/scenes/*.json; do
+    name=$(basename "$f" .json)
+    frame=$(frame_of "$name")
+    # shellcheck disable=SC2086
+    "$BIN" render "$name" -o "$TMP/$name.png" $SIZE $frame > /dev/null
+    jpg "$TMP/$name.png" "scene-$name"
+    desc=$(grep -m1 '"description"' "$f" | sed 's/.*"description": *"\(.*\)",*/\1/')
+    echo "| \`$name\`: $desc | \`pleinair render $name -o $name.png $SIZE${frame:+ $frame}\` | ![](gallery/scene-$name.jpg) |" >> "$MD"
+done
+
+cat >> "$MD" <<'EOF'
+
+## Tree families
+
+Four members of each family on a contact sheet, their crowns painted as strokes and as graftals
+(the graftal style of issue 11: `corot-leaf` dabs, and for the truffula its own tufts).
+
+| family | strokes | graftals |
+|---|---|---|
+EOF
+
+for f in presets/trees/*.json; do
+    name=$(basename "$f" .json)
+    style=corot-leaf
+    [ "$name" = truffula ] && style=truffula-tuft
+    "$BIN" family --preset "$name" --count 4 --width $W --height $H -o "$TMP/$name.png" > /dev/null
+    "$BIN" family --preset "$name" --count 4 --width $W --height $H --style $style \
+        -o "$TMP/$name-graftal.png" > /dev/null
+    jpg "$TMP/$name.png" "family-$name"
+    jpg "$TMP/$name-graftal.png" "family-$name-graftals"
+    echo "| \`$name\`: \`pleinair family --preset $name --count 4 --width $W --height $H -o $name.png\`, the same with \`--style $style\` | ![](gallery/family-$name.jpg) | ![](gallery/family-$name-graftals.jpg) |" >> "$MD"
+done
+
+mv "$MD" docs/gallery.md
+echo "docs/gallery.md: $(ls "$OUT"/*.jpg | wc -l) images, $(du -ck "$OUT"/*.jpg | tail -1 | cut -f1) KB"
