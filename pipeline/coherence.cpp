@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <unordered_map>
 
 #include "pipeline/camera_track.h"
@@ -55,7 +56,9 @@ struct Sum {
     uint64_t count = 0;
 };
 
-Sum flicker_between(const Traced& prev, const Traced& cur) {
+// `only`, when given, picks the strokes measured (the water's).
+Sum flicker_between(const Traced& prev, const Traced& cur,
+                    const std::function<bool(const Sprite&)>& only = {}) {
     const auto& ct = *cur.report.trace;
     const auto& pt = *prev.report.trace;
     const int w = cur.frame.width, h = cur.frame.height;
@@ -67,6 +70,7 @@ Sum flicker_between(const Traced& prev, const Traced& cur) {
             const uint32_t i = ct.first[p];
             if (i == kNone) continue;
             const Sprite& a = ct.sprites[i];
+            if (only && !only(a)) continue;
             const auto found = prev.index.find(sprite_key(a));
             if (found == prev.index.end()) continue;
             const Sprite& b = pt.sprites[found->second];
@@ -233,11 +237,23 @@ CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& fram
     std::vector<float> p_presence;
     double p_area_on = 0, p_area_off = 0;
     Sum f_on, f_frozen, f_boil;
+    // Still water's mirror: its strokes' flicker with it, without it, and boiling.
+    rep.water = plan_frame(shot, on).reflections;
+    FrameSettings dry = on;
+    dry.reflections = false;
+    const MaterialId water = shot.materials.surface(shot.scene.water.material);
+    const std::function<bool(const Sprite&)> is_water = [&](const Sprite& sp) {
+        return sp.kind == SpriteKind::kSurface && sp.material == water;
+    };
+    Traced p_dry;
+    Sum w_on, w_dry, w_boil;
     for (size_t n = 0; n < frames.size(); ++n) {
         const FrameView view = view_at(scene, frame_time(frames[n], scene.fps));
         boiling.noise_reseed = static_cast<uint32_t>(frames[n]) + 1;
         Traced c_on = paint_traced(shot, view, on), c_frozen = paint_traced(shot, view, frozen);
         Traced c_off = paint_traced(shot, view, off), c_boil = paint_traced(shot, view, boiling);
+        Traced c_dry;
+        if (rep.water) c_dry = paint_traced(shot, view, dry);
         PairOrders c_pairs = order_pairs(c_on);
         std::vector<float> c_presence = presences(shot, view, on.render);
         double area_on, l_on, area_off, l_off;
@@ -262,6 +278,11 @@ CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& fram
             add(f_on, flicker_between(p_on, c_on));
             add(f_frozen, flicker_between(p_frozen, c_frozen));
             add(f_boil, flicker_between(p_boil, c_boil));
+            if (rep.water) {
+                add(w_on, flicker_between(p_on, c_on, is_water));
+                add(w_dry, flicker_between(p_dry, c_dry, is_water));
+                add(w_boil, flicker_between(p_boil, c_boil, is_water));
+            }
             swaps_between(p_pairs, c_pairs, row.order_swaps, row.abrupt_swaps);
             rep.order_swaps += row.order_swaps, rep.abrupt_swaps += row.abrupt_swaps;
             for (size_t k = 0; k < c_presence.size(); ++k) {
@@ -280,7 +301,7 @@ CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& fram
                     std::max(rep.area_step, std::abs(area_on / p_area_on - area_off / p_area_off));
         }
         p_on = std::move(c_on), p_frozen = std::move(c_frozen);
-        p_off = std::move(c_off), p_boil = std::move(c_boil);
+        p_off = std::move(c_off), p_boil = std::move(c_boil), p_dry = std::move(c_dry);
         p_pairs = std::move(c_pairs);
         p_presence = std::move(c_presence);
         p_area_on = area_on, p_area_off = area_off;
@@ -291,6 +312,8 @@ CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& fram
     auto mean = [](const Sum& s) { return s.count ? s.total / static_cast<double>(s.count) : 0.0; };
     rep.flicker = mean(f_on), rep.flicker_floor = mean(f_frozen);
     rep.flicker_boiling = mean(f_boil);
+    rep.water_flicker = mean(w_on), rep.water_flicker_dry = mean(w_dry);
+    rep.water_flicker_boiling = mean(w_boil);
     return rep;
 }
 

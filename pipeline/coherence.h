@@ -21,6 +21,11 @@ struct CoherenceReport {
     // frame (the floor: motion alone), as it is, and with every stroke's noise reseeded each
     // frame (boiling).
     double flicker_floor = 0, flicker = 0, flicker_boiling = 0;
+    // The same over still water's strokes alone, when the shot's water mirrors (water): with
+    // the mirror, without it (the water's own floor: its strokes' noise and light only), and
+    // boiling.
+    bool water = false;
+    double water_flicker = 0, water_flicker_dry = 0, water_flicker_boiling = 0;
     // Where the shot lies between its floor (0) and boiling (1).
     double flicker_score() const;
     // Strokes on screen in two consecutive frames whose presence (their fade times their
@@ -66,7 +71,8 @@ struct CoherenceReport {
 };
 
 // Paints `frames` of the shot four times (level of detail as planned, frozen at the first
-// frame, off, and with boiling noise) and measures them. `progress` (optional) is called after
+// frame, off, and with boiling noise), five when still water mirrors (and without its mirror),
+// and measures them. `progress` (optional) is called after
 // each frame with the frames done.
 CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& frames,
                                   const FrameSettings& settings,

@@ -92,11 +92,13 @@ FramePlan plan_frame(const Shot& shot, const FrameSettings& settings) {
                                "painted where no surface hides the sky"
         : !scene.sky.present ? "the scene has no /sky: the background's gradient"
                              : "the background is a canvas");
-    plan.reflections = scene.water.present && scene.water.reflection > 0 && shot.view_rays;
+    plan.reflections =
+        scene.water.present && scene.water.reflection > 0 && shot.view_rays && settings.reflections;
     add("reflections", plan.reflections,
         plan.reflections       ? "still water: each water stroke in view casts a reflected ray"
         : !scene.water.present ? "the scene has no water"
         : !(scene.water.reflection > 0) ? "/water/reflection is 0"
+        : !settings.reflections         ? "turned off for a baseline (coherence bench)"
                                         : "no camera scene to reflect");
     plan.pigment = settings.render.pigment_mixing;
     add("pigment mixing", plan.pigment,

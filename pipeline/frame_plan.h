@@ -28,6 +28,9 @@ struct FrameSettings {
     bool trace = false;
     const FrameView* lod_view = nullptr;
     uint32_t noise_reseed = 0;
+    // The coherence bench only: false paints still water without its mirror (the baseline of
+    // the water's flicker).
+    bool reflections = true;
     // Told when each stage starts (done 0) and how far the paint stage has come, for frames
     // long enough to report on; called from worker threads (the callee serializes).
     std::function<void(const char* stage, double done)> progress;
@@ -66,10 +69,10 @@ struct FramePlan {
     bool fragment_shadows = false;  // a 4 x 4 grid of shadow rays per sprite
     bool underpaint = false;        // a visible mesh: flat colour under the strokes
     bool bare_blend = false;
-    bool lod = false;        // the camera carries distance circles and level_of_detail is on
-    bool graftals = false;   // some family or material is drawn in a graftal style
-    bool imposters = false;  // some family or material carries graftal imposters
-    bool sky = false;        // a painted sky (sky.h): its strokes under every other
+    bool lod = false;          // the camera carries distance circles and level_of_detail is on
+    bool graftals = false;     // some family or material is drawn in a graftal style
+    bool imposters = false;    // some family or material carries graftal imposters
+    bool sky = false;          // a painted sky (sky.h): its strokes under every other
     bool reflections = false;  // still water mirrors what its reflected rays find
     bool pigment = false;      // strokes mix as pigments (shading/pigment.h)
     bool canvas = false;       // a canvas weave under thin paint and at stroke edges

@@ -11,6 +11,7 @@
 #include "pipeline/composite.h"
 #include "pipeline/shot.h"
 #include "pipeline/sky.h"
+#include "shading/portable_math.h"
 
 namespace pleinair {
 
@@ -36,11 +37,11 @@ MirrorContext mirror_context(const Shot& shot, const FrameView& view, const Fram
     return c;
 }
 
-int mirror(const MirrorContext& c, const RayOrigin& at, const glm::vec3& n, const glm::vec3& up,
-           const glm::dvec3& dir, StrokeConstants& k) {
+namespace {
+// What one reflected ray sees from `at`: the view `dir` reflected about `n`. Adds its rays.
+Color mirrored(const MirrorContext& c, const RayOrigin& at, const glm::vec3& n,
+               const glm::dvec3& dir, int& rays) {
     const SceneDesc& scene = c.shot.scene;
-    const float amount_max = clamp01(scene.water.reflection);
-    if (!(amount_max > 0.0f) || !c.shot.view_rays) return 0;
     // The reflected ray, kept above the water where a ripple would turn it under.
     glm::dvec3 r = dir - 2.0 * glm::dot(dir, glm::dvec3(n)) * glm::dvec3(n);
     if (!(r.y >= 0.01)) r.y = 0.01;
@@ -49,7 +50,7 @@ int mirror(const MirrorContext& c, const RayOrigin& at, const glm::vec3& n, cons
     const glm::dvec3 from = at.lifted();
     const RayHit h = c.shot.view_rays->intersect(from, rf, std::numeric_limits<float>::infinity(),
                                                  at.surface_normal());
-    int rays = 1;
+    ++rays;
     Color seen;
     if (h.hit) {
         // The hit's own flat colour, as the underpainting paints it (it casts its shadow ray);
@@ -72,6 +73,18 @@ int mirror(const MirrorContext& c, const RayOrigin& at, const glm::vec3& n, cons
         seen = mix(c.foliage, seen, through);
         ++rays;
     }
+    return seen;
+}
+}  // namespace
+
+int mirror(const MirrorContext& c, const RayOrigin& at, const glm::vec3* normals, int count,
+           const glm::vec3& up, const glm::dvec3& dir, StrokeConstants& k) {
+    const float amount_max = clamp01(c.shot.scene.water.reflection);
+    if (!(amount_max > 0.0f) || !c.shot.view_rays || count < 1) return 0;
+    int rays = 0;
+    Color seen(0.0f);
+    for (int i = 0; i < count; ++i) seen += mirrored(c, at, normals[i], dir, rays);
+    seen /= static_cast<float>(count);
     const float fresnel = water_reflectance(static_cast<float>(glm::dot(dir, glm::dvec3(up))));
     const float amount = amount_max * fresnel;
     const float dim = 1.0f - kNearDarken * amount_max * (1.0f - fresnel);
@@ -85,6 +98,7 @@ ReflectionReport add_reflections(const MirrorContext& c, SpriteSet& set) {
     const Shot& shot = c.shot;
     const MaterialId water = shot.materials.surface(shot.scene.water.material);
     const float ripple = shot.scene.water.ripple;
+    const int count = std::clamp(shot.scene.water.mirror_rays, 1, kMaxMirrorRays);
     const size_t trees = shot.trees->size();
     tbb::combinable<uint64_t> strokes{[] { return uint64_t{0}; }}, rays{[] { return uint64_t{0}; }};
     tbb::parallel_for(
@@ -98,10 +112,22 @@ ReflectionReport add_reflections(const MirrorContext& c, SpriteSet& set) {
                 const size_t j = sp.particle;
                 const glm::dvec3 world(S.position[j]);
                 const glm::vec3 up = S.normal(j);
-                const glm::vec3 n = lighting_normal(up, S.random_normal(j), ripple);
+                // Its ripples: the stroke's random normal, then more drawn from its label, each
+                // leaning the water's normal a little.
+                glm::vec3 n[kMaxMirrorRays];
+                n[0] = lighting_normal(up, S.random_normal(j), ripple);
+                for (int k = 1; k < count; ++k) {
+                    const float z = 2.0f * label_hash(S.label[j], 20u + k) - 1.0f;
+                    const float a = 6.2831853f * label_hash(S.label[j], 40u + k);
+                    const float rho = std::sqrt(std::max(0.0f, 1.0f - z * z));
+                    n[k] = lighting_normal(up,
+                                           glm::vec3(rho * static_cast<float>(pmath::cos(a)), z,
+                                                     rho * static_cast<float>(pmath::sin(a))),
+                                           ripple);
+                }
                 const glm::dvec3 dir = glm::normalize(world - c.view.camera.eye);
-                rays.local() += static_cast<uint64_t>(
-                    mirror(c, RayOrigin{world, up, true, shot.surface_lift}, n, up, dir, sp.k));
+                rays.local() += static_cast<uint64_t>(mirror(
+                    c, RayOrigin{world, up, true, shot.surface_lift}, n, count, up, dir, sp.k));
                 ++strokes.local();
             }
         });

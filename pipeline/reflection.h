@@ -33,11 +33,12 @@ struct MirrorContext {
 MirrorContext mirror_context(const Shot& shot, const FrameView& view, const FramePlan& plan,
                              const RenderSettings& settings, const RayScene* sun_rays);
 
-// Sets k.mirror and k.mirror_keep for water at `at`: the view `dir` (unit, from the eye)
-// reflected about `n` (unit; ripples lean it off the water's normal `up`). Returns the rays
-// cast.
-int mirror(const MirrorContext& c, const RayOrigin& at, const glm::vec3& n, const glm::vec3& up,
-           const glm::dvec3& dir, StrokeConstants& k);
+// Sets k.mirror and k.mirror_keep for water at `at`: the mean of what the view `dir` (unit,
+// from the eye) reflected about each of `count` normals (unit; ripples lean them off the
+// water's normal `up`) finds. Returns the rays cast.
+inline constexpr int kMaxMirrorRays = 16;
+int mirror(const MirrorContext& c, const RayOrigin& at, const glm::vec3* normals, int count,
+           const glm::vec3& up, const glm::dvec3& dir, StrokeConstants& k);
 
 struct ReflectionReport {
     uint64_t strokes = 0, rays = 0;

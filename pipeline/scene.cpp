@@ -97,6 +97,10 @@ void visit_water(WaterDesc& w, V& v) {
            "How far ripples lean each stroke's mirror: its normal moves this share of the way "
            "towards the stroke's random direction (0.02 is about a degree: a tree's reflection "
            "stays whole but breaks at its edges).");
+    v.integer("mirror_rays", w.mirror_rays, {1, 16},
+              "Reflected rays a water stroke averages, each through its own ripple: more keep "
+              "its colour from jumping as the camera moves its rays across an edge "
+              "(BENCHMARKS.md, \"The Corot look\"), at that many rays' cost.");
 }
 
 template <class V>

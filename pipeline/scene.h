@@ -111,6 +111,7 @@ struct WaterDesc {
     // world at grazing angles, scaled down towards the viewer by water's Fresnel reflectance.
     float reflection = 0.85f;
     float ripple = 0.02f;  // how far ripples lean a stroke's mirror normal, towards a random one
+    int mirror_rays = 4;   // reflected rays a water stroke averages
 };
 
 struct RockDesc {

@@ -71,7 +71,7 @@ Color underpaint_color(const Shot& shot, const FrameView& view, const FramePlan&
                          plan.atmosphere && has_atmosphere_effect(*m.shader));
     if (plan.reflections && !vs.terrain && mat == shot.materials.surface(scene.water.material))
         mirror(mirror_context(shot, view, plan, rs, sun_rays),
-               RayOrigin{world, n, true, shot.surface_lift}, n, n, dir, k);
+               RayOrigin{world, n, true, shot.surface_lift}, &n, 1, n, dir, k);
     return finish_color(k, palette_lookup(*m.palette, l));
 }
 

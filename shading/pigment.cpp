@@ -219,16 +219,19 @@ const PigmentTable& PigmentTable::shared() {
     return t;
 }
 
-PigmentLatent PigmentTable::encode(Color lin) const {
-    constexpr int n = kPigmentGrid;
+namespace {
+// W floats per point of a cube table n points a side (the first axis fastest), read
+// trilinearly at u (each in 0..1 over the table).
+template <int W>
+void trilinear(const std::vector<float>& table, int n, const float u[3], float out[W]) {
     float f[3];
     int i0[3];
     for (int k = 0; k < 3; ++k) {
-        const float x = std::sqrt(clamp01(lin[k])) * (n - 1);
+        const float x = clamp01(u[k]) * static_cast<float>(n - 1);
         i0[k] = std::min(static_cast<int>(x), n - 2);
         f[k] = x - static_cast<float>(i0[k]);
     }
-    float z[4] = {};
+    for (int j = 0; j < W; ++j) out[j] = 0;
     for (int corner = 0; corner < 8; ++corner) {
         float w = 1;
         int idx[3];
@@ -237,12 +240,17 @@ PigmentLatent PigmentTable::encode(Color lin) const {
             idx[k] = i0[k] + bit;
             w *= bit ? f[k] : 1.0f - f[k];
         }
-        if (w == 0.0f) continue;
-        const float* e = &table_[((static_cast<size_t>(idx[2]) * n + idx[1]) * n + idx[0]) * 4];
-        for (int j = 0; j < 4; ++j) z[j] += w * e[j];
+        const float* e = &table[((static_cast<size_t>(idx[2]) * n + idx[1]) * n + idx[0]) * W];
+        for (int j = 0; j < W; ++j) out[j] += w * e[j];
     }
+}
+}  // namespace
+
+PigmentLatent PigmentTable::encode(Color lin) const {
+    const float u[3] = {std::sqrt(clamp01(lin.x)), std::sqrt(clamp01(lin.y)),
+                        std::sqrt(clamp01(lin.z))};
     PigmentLatent out;
-    for (int p = 0; p < 4; ++p) out.c[p] = z[p];
+    trilinear<4>(table_, kPigmentGrid, u, out.c.data());
     // What the tabulated mixture misses of this colour: decoding adds it back to the same
     // mixture, so a colour encoded and decoded is itself to float rounding.
     out.residual = lin - mixture(out.c);
@@ -250,27 +258,10 @@ PigmentLatent PigmentTable::encode(Color lin) const {
 }
 
 Color PigmentTable::mixture(const std::array<float, 4>& c) const {
-    constexpr int n = kMixGrid;
-    float f[3];
-    int i0[3];
-    for (int k = 0; k < 3; ++k) {
-        const float x = clamp01(c[k + 1]) * (n - 1);
-        i0[k] = std::min(static_cast<int>(x), n - 2);
-        f[k] = x - static_cast<float>(i0[k]);
-    }
-    Color out(0.0f);
-    for (int corner = 0; corner < 8; ++corner) {
-        float w = 1;
-        int idx[3];
-        for (int k = 0; k < 3; ++k) {
-            const int bit = (corner >> k) & 1;
-            idx[k] = i0[k] + bit;
-            w *= bit ? f[k] : 1.0f - f[k];
-        }
-        const float* e = &mix_[((static_cast<size_t>(idx[2]) * n + idx[1]) * n + idx[0]) * 3];
-        out += Color(e[0], e[1], e[2]) * w;
-    }
-    return out;
+    const float u[3] = {c[1], c[2], c[3]};
+    float rgb[3];
+    trilinear<3>(mix_, kMixGrid, u, rgb);
+    return {rgb[0], rgb[1], rgb[2]};
 }
 
 Color PigmentTable::decode(const PigmentLatent& z) const {

@@ -66,6 +66,11 @@ int run_bench_coherence(const BenchCommand& cmd) {
             ? (fmt("%.3f", r.shape_overlap) + " (floor " + fmt("%.3f", r.shape_floor) + ")").c_str()
             : "-",
         ratio(r.sprites_on, r.sprites_off), ratio(r.fragments_on, r.fragments_off));
+    if (r.water)
+        std::printf(
+            "\nStill water's strokes alone, flicker without the mirror / with it / boiling: "
+            "%.4f / %.4f / %.4f\n",
+            r.water_flicker_dry, r.water_flicker, r.water_flicker_boiling);
     if (!cmd.per_frame) return 0;
     std::printf(
         "\n| frame | area on | area off | on vs off | L* on | L* off | shape overlap | order "
