@@ -95,8 +95,8 @@ FramePlan plan_frame(const Shot& shot, const FrameSettings& settings) {
     plan.reflections =
         scene.water.present && scene.water.reflection > 0 && shot.view_rays && settings.reflections;
     add("reflections", plan.reflections,
-        plan.reflections       ? "still water: each water stroke in view casts a reflected ray"
-        : !scene.water.present ? "the scene has no water"
+        plan.reflections ? "still water: each water stroke in view averages /water/mirror_rays rays"
+        : !scene.water.present          ? "the scene has no water"
         : !(scene.water.reflection > 0) ? "/water/reflection is 0"
         : !settings.reflections         ? "turned off for a baseline (coherence bench)"
                                         : "no camera scene to reflect");

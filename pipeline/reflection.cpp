@@ -29,8 +29,13 @@ float water_reflectance(float cos_view) {
 
 MirrorContext mirror_context(const Shot& shot, const FrameView& view, const FramePlan& plan,
                              const RenderSettings& settings, const RayScene* sun_rays) {
-    MirrorContext c{shot, view, plan, settings, nullptr, Color(0.0f)};
+    MirrorContext c{shot, view, plan, settings, nullptr, Color(0.0f), FramePlan{}};
     if (sun_rays && sun_rays->caster_count() > 0) c.sun_rays = sun_rays;
+    // Built once: copying the plan's notes for every ray cost an allocation per ray.
+    c.flat = plan;
+    c.flat.decisions.clear();
+    c.flat.atmosphere = false;
+    c.flat.reflections = false;
     const auto& fams = shot.scene.families;
     for (const Family& f : fams) c.foliage += palette_lookup(f.leaf_palette, 0.3f);
     if (!fams.empty()) c.foliage /= static_cast<float>(fams.size());
@@ -55,12 +60,9 @@ Color mirrored(const MirrorContext& c, const RayOrigin& at, const glm::vec3& n,
     if (h.hit) {
         // The hit's own flat colour, as the underpainting paints it (it casts its shadow ray);
         // the water's atmosphere comes after, on the mirrored colour.
-        FramePlan flat = c.plan;
-        flat.atmosphere = false;
-        flat.reflections = false;
-        seen = underpaint_color(c.shot, c.view, flat, c.settings, c.sun_rays, h,
+        seen = underpaint_color(c.shot, c.view, c.flat, c.settings, c.sun_rays, h,
                                 from + r * static_cast<double>(h.t), h.normal, r);
-        rays += flat.shadows && c.sun_rays;
+        rays += c.flat.shadows && c.sun_rays;
     } else {
         seen = c.plan.sky ? sky_color(scene, rf, glm::vec3(c.view.sun_direction))
                           : background_at(scene.background, r);

@@ -29,6 +29,7 @@ struct MirrorContext {
     const RenderSettings& settings;
     const RayScene* sun_rays = nullptr;  // the leaf strokes' casters, when the frame has them
     Color foliage{0.0f};  // a reflected leaf stroke: the families' leaf palettes in shade
+    FramePlan flat;       // the plan hits are coloured by: no atmosphere, no mirror, no notes
 };
 MirrorContext mirror_context(const Shot& shot, const FrameView& view, const FramePlan& plan,
                              const RenderSettings& settings, const RayScene* sun_rays);

@@ -68,6 +68,7 @@ SpriteSet sky_sprites(const Shot& shot, const FrameView& view, const FramePlan& 
     // The camera turned, never moved: the sky lies at infinity.
     Camera rot = view.camera;
     rot.eye = glm::dvec3(0.0);
+    rot.near_depth = 1e-6;  // directions lie at distance 1, whatever the focus distance
     const glm::vec3 sun(view.sun_direction);
     const float min_px = std::max(rs.min_stroke_px, 0.5f);
     for (size_t i = 0; i < sky.size(); ++i) {

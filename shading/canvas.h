@@ -12,13 +12,15 @@
 
 namespace pleinair {
 
-// The weave's height, 0 (between threads) .. 1 (a thread's crown), tabulated over a 256 x 256
-// pixel tile that repeats (a canvas is regular; 256 pixels hide the repeat under the paint).
+// The weave's height, 0 (between threads) .. 1 (a thread's crown), tabulated over a square
+// tile that holds a whole number of the weave's periods (two threads), so it repeats without a
+// seam; its side is near 256 pixels and the threads are widened or narrowed by under 2% to fit.
 struct CanvasWeave {
-    static constexpr int kSize = 256;
+    int side = 1;
     std::vector<float> height;
     float at(int x, int y) const {
-        return height[static_cast<size_t>(y & (kSize - 1)) * kSize + (x & (kSize - 1))];
+        const int u = ((x % side) + side) % side, v = ((y % side) + side) % side;
+        return height[static_cast<size_t>(v) * side + u];
     }
 };
 
@@ -27,11 +29,14 @@ struct CanvasWeave {
 // hash of its index, as linen's does.
 inline CanvasWeave make_canvas_weave(float thread_px) {
     CanvasWeave w;
-    w.height.resize(CanvasWeave::kSize * CanvasWeave::kSize);
-    const float t = std::max(thread_px, 3.0f);
+    const float want = std::max(thread_px, 3.0f);
+    const int periods = std::max(1, static_cast<int>(256.0f / (2.0f * want) + 0.5f));
+    w.side = std::max(6, static_cast<int>(2.0f * want * static_cast<float>(periods) + 0.5f));
+    const float t = static_cast<float>(w.side) / (2.0f * static_cast<float>(periods));
+    w.height.resize(static_cast<size_t>(w.side) * w.side);
     constexpr float kPi = 3.14159265358979f;
-    for (int y = 0; y < CanvasWeave::kSize; ++y)
-        for (int x = 0; x < CanvasWeave::kSize; ++x) {
+    for (int y = 0; y < w.side; ++y)
+        for (int x = 0; x < w.side; ++x) {
             const float fx = (static_cast<float>(x) + 0.5f) / t,
                         fy = (static_cast<float>(y) + 0.5f) / t;
             const int i = static_cast<int>(fx), j = static_cast<int>(fy);
@@ -42,7 +47,7 @@ inline CanvasWeave make_canvas_weave(float thread_px) {
             const float thick =
                 0.75f + 0.5f * tree_hash01(static_cast<uint32_t>(index) * 2u + (weft ? 1u : 0u));
             const float s = clamp01(static_cast<float>(pmath::sin(kPi * across)));
-            w.height[static_cast<size_t>(y) * CanvasWeave::kSize + x] =
+            w.height[static_cast<size_t>(y) * w.side + x] =
                 clamp01(static_cast<float>(pmath::pow(s, 1.0f / thick)) * (0.85f + 0.15f * thick));
         }
     return w;
