@@ -96,8 +96,16 @@ gallery: build
 
 # Repaints every golden image's reference (tests/golden/README.md): look at them before
 # committing.
+# A case with an `animate` file is a frame of a shipped shot, painted by animate with the
+# arguments the file holds.
 golden: build
-	for d in tests/golden/*/; do $(BUILD)/pleinair render $$d/scene.json -o $$d/reference.png; done
+	for d in tests/golden/*/; do \
+	    if [ -f $$d/animate ]; then \
+	        tmp=$$(mktemp -d) && n=$$(basename $$d) && \
+	        $(BUILD)/pleinair animate $${n#shot-} $$(cat $$d/animate) -o $$tmp/f_####.png --progress log >/dev/null && \
+	        mv $$tmp/f_*.png $$d/reference.png && rmdir $$tmp || exit 1; \
+	    else $(BUILD)/pleinair render $$d/scene.json -o $$d/reference.png || exit 1; fi; \
+	done
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

@@ -6,6 +6,7 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 #include <sys/mman.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -124,6 +125,13 @@ class MemoryFile {
     std::string bytes() const {
         struct stat st;
         if (::fstat(fd_, &st) != 0) fail(errno);
+        // The memory file is a file: past the file-size limit (ulimit -f) its writes failed
+        // with EFBIG, which the PNG writer notes and then reports success. A file that reached
+        // the limit was cut there.
+        struct rlimit fsize;
+        if (::getrlimit(RLIMIT_FSIZE, &fsize) == 0 && fsize.rlim_cur != RLIM_INFINITY &&
+            static_cast<rlim_t>(st.st_size) >= fsize.rlim_cur)
+            fail(EFBIG);
         std::string b(static_cast<size_t>(st.st_size), '\0');
         for (size_t done = 0; done < b.size();) {
             ssize_t n = ::pread(fd_, b.data() + done, b.size() - done, static_cast<off_t>(done));
@@ -257,8 +265,14 @@ void write_frame(const fs::path& path, const Frame& f) {
     auto out = OIIO::ImageOutput::create(path.string());  // the format from the target's name
     bool ok =
         out && out->open(memory.name(), spec) && out->write_image(in_type, data) && out->close();
+    // A writer that noted a failed write but returned true (the PNG writer, past a file-size
+    // limit: the memory file is a file too) is a failure all the same.
+    ok = ok && !out->has_error();
     if (!ok) {
         std::string err = out ? out->geterror() : OIIO::geterror();
+        // One line: a writer may note a failure per block written.
+        if (const size_t eol = err.find('\n'); eol != std::string::npos) err.resize(eol);
+        while (!err.empty() && err.back() == ' ') err.pop_back();
         throw std::runtime_error("cannot write " + path.string() + ": " +
                                  (err.empty() ? "OpenImageIO cannot encode it" : err));
     }

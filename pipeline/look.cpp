@@ -83,6 +83,62 @@ double mean_flat_run(const Frame& f, const std::vector<uint8_t>& mask) {
     return runs ? double(pixels) / double(runs) : 0.0;
 }
 
+namespace {
+
+// No stroke more than half opaque in front, no surface, the ray above the horizon; and at most
+// `max_alpha` of strokes' paint over it (the thin edges of a crown have no id of their own).
+bool is_open_sky(const Camera& cam, const Frame& f, int x, int y, float max_alpha = 1.0f) {
+    const size_t i = static_cast<size_t>(y) * f.width + x;
+    if (f.object_id[i] != 0.0f || f.depth[i] != std::numeric_limits<float>::max()) return false;
+    if (!(f.alpha[i] <= max_alpha)) return false;
+    return ray_direction(cam, x + 0.5, y + 0.5).y > 0.02;
+}
+
+}  // namespace
+
+std::vector<uint8_t> sky_region(const Camera& camera, const Frame& f) {
+    std::vector<uint8_t> sky(static_cast<size_t>(f.width) * f.height, 0);
+    if (!f.has_aovs) return sky;
+    tbb::parallel_for(0, f.height, [&](int y) {
+        for (int x = 0; x < f.width; ++x)
+            sky[static_cast<size_t>(y) * f.width + x] = is_open_sky(camera, f, x, y, 0.02f);
+    });
+    return sky;
+}
+
+SkyGamut sky_gamut(const SceneDesc& scene) {
+    SkyGamut g;
+    auto take = [&](const Color& srgb) {
+        for (int c = 0; c < 3; ++c)
+            g.lo[c] = std::min(g.lo[c], srgb[c]), g.hi[c] = std::max(g.hi[c], srgb[c]);
+    };
+    take(scene.background.sky_zenith), take(scene.background.sky_horizon);
+    if (scene.sky.present) {
+        const Palette& p = scene.sky.palette;
+        for (const ColorSpline* s : {&p.dark, &p.mid, &p.light})
+            for (const Color& c : s->colors) take(linear_to_srgb(c));
+        take(linear_to_srgb(scene.sky.shader.dist_hue_color));
+    }
+    return g;
+}
+
+uint64_t pixels_outside(const Frame& f, const std::vector<uint8_t>& mask, const SkyGamut& g,
+                        float margin) {
+    uint64_t n = 0;
+    for (size_t i = 0; i < mask.size(); ++i) {
+        if (!mask[i]) continue;
+        const float a = f.rgba[4 * i + 3];
+        bool out = false;
+        for (int c = 0; c < 3; ++c) {
+            // Premultiplied over an opaque background: alpha is 1 in the sky.
+            const float v = linear_to_srgb(a > 0 ? f.rgba[4 * i + c] / a : 0.0f);
+            out |= !(v >= g.lo[c] - margin && v <= g.hi[c] + margin);
+        }
+        n += out;
+    }
+    return n;
+}
+
 LookRegions look_regions(const Shot& shot, const FrameView& view, const Frame& f) {
     LookRegions r;
     const size_t n = static_cast<size_t>(f.width) * f.height;
@@ -97,10 +153,10 @@ LookRegions look_regions(const Shot& shot, const FrameView& view, const Frame& f
             const size_t i = static_cast<size_t>(y) * f.width + x;
             const float id = f.object_id[i];
             r.trees[i] = id >= 1.0f && id < 65536.0f;
-            const glm::dvec3 d = ray_direction(cam, x + 0.5, y + 0.5);
-            r.sky[i] = id == 0.0f && f.depth[i] == std::numeric_limits<float>::max() && d.y > 0.02;
+            r.sky[i] = is_open_sky(cam, f, x, y);
             if (!water) continue;
-            const RayHit h = shot.view_rays->intersect(cam.eye, glm::vec3(d));
+            const RayHit h =
+                shot.view_rays->intersect(cam.eye, glm::vec3(ray_direction(cam, x + 0.5, y + 0.5)));
             if (!h.hit) continue;
             const ViewSurface& vs = shot.view_surfaces[h.geometry];
             r.water[i] = !vs.terrain && vs.material == water_mat;

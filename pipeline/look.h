@@ -1,12 +1,14 @@
 // Measures of a painted frame's look (issue 13 §6), computed from its pixels and AOVs: how much
 // brush texture a region carries, whether a smooth region bands in 8-bit output, and how well
-// water mirrors the bank above it.
+// water mirrors the bank above it, and whether the open sky keeps to its palette.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
+#include "pipeline/camera.h"
 #include "pipeline/frame.h"
+#include "pipeline/scene.h"
 
 namespace pleinair {
 
@@ -40,5 +42,24 @@ LookRegions look_regions(const Shot& shot, const FrameView& view, const Frame& f
 // whose mirrored pixel is inside the frame and not water. 0 when fewer than 16 pairs.
 double mirror_correlation(const std::vector<float>& lightness, int width, int height,
                           const std::vector<uint8_t>& water, uint64_t* pairs = nullptr);
+
+// What colour a day sky may take (sRGB, per channel): the least and the most over the sky
+// palette's colours, the background's sky gradient and, under a painted sky, the shader's
+// distance hue (its strokes lie at infinity). A sky painted black and white where its palette
+// is pale blue lies far outside it (issue 24).
+struct SkyGamut {
+    float lo[3] = {1, 1, 1}, hi[3] = {0, 0, 0};
+};
+SkyGamut sky_gamut(const SceneDesc& scene);
+
+// The pixels of `mask` whose sRGB colour lies outside `gamut` widened by `margin` in any
+// channel.
+uint64_t pixels_outside(const Frame& frame, const std::vector<uint8_t>& mask, const SkyGamut& gamut,
+                        float margin);
+
+// The open sky of a frame, from its AOVs and the camera alone: look_regions' sky (no stroke or
+// surface with an id in front, the underpainting's far depth, the ray above the horizon) with
+// no more than 2% of other strokes' paint over it (a crown's thin edges have no id).
+std::vector<uint8_t> sky_region(const Camera& camera, const Frame& frame);
 
 }  // namespace pleinair

@@ -10,9 +10,12 @@ MaterialTable::MaterialTable(const SceneDesc& scene)
       surfaces_(static_cast<uint32_t>(scene.materials.size())) {
     auto add = [&](SpriteKind kind, const StrokeShaderParams& shader, const Palette& palette,
                    const SurfaceShaderParams* surface) {
-        materials_.push_back({kind, &shader, &palette, surface,
-                              make_edge_table(shader.stroke_fullness), make_dry_brush_table(shader),
-                              std::max(luminance(palette_lookup(palette, 0.5f)), 1e-3f)});
+        materials_.push_back(
+            {kind, std::make_shared<const StrokeShaderParams>(shader),
+             std::make_shared<const Palette>(palette),
+             surface ? std::make_shared<const SurfaceShaderParams>(*surface) : nullptr,
+             make_edge_table(shader.stroke_fullness), make_dry_brush_table(shader),
+             std::max(luminance(palette_lookup(palette, 0.5f)), 1e-3f)});
     };
     for (const Family& f : scene.families) {
         add(SpriteKind::kLeaf, f.leaf_shader, f.leaf_palette, nullptr);

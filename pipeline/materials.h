@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "pipeline/scene.h"
@@ -20,9 +21,11 @@ enum class SpriteKind : uint8_t { kLeaf, kBark, kSurface, kGraftal, kSky };
 // stroke_fullness, tabulated once).
 struct SpriteMaterial {
     SpriteKind kind = SpriteKind::kLeaf;
-    const StrokeShaderParams* shader = nullptr;
-    const Palette* palette = nullptr;
-    const SurfaceShaderParams* surface = nullptr;  // surface materials only
+    // Owned by the table (shared by its copies), so a shot can move or be copied: a table that
+    // pointed into its scene broke when the shot holding both moved (issue 24: animate's sky).
+    std::shared_ptr<const StrokeShaderParams> shader;
+    std::shared_ptr<const Palette> palette;
+    std::shared_ptr<const SurfaceShaderParams> surface;  // surface materials only
     EdgeTable edge;
     DryBrushTable dry_brush;  // how its strokes fade (composite.cpp)
     // The luminance of the palette's middle colour: a particle's own colour is painted relative
@@ -36,7 +39,8 @@ struct MaterialId {
     bool operator==(const MaterialId&) const = default;
 };
 
-// Built once from a scene, which must outlive it (the materials point into it).
+// Built once from a scene; holds its own copy of every shader and palette, so it does not
+// depend on where the scene lives.
 class MaterialTable {
   public:
     MaterialTable() = default;

@@ -258,6 +258,10 @@ void PartialOutput::commit() {
 }
 
 void install_partial_cleanup() {
+    // A write past the file-size limit (ulimit -f, a farm's quota) then fails with EFBIG and is
+    // reported like a full disk, its temporary removed, instead of the process dying by SIGXFSZ
+    // and leaving the temporary behind.
+    ::signal(SIGXFSZ, SIG_IGN);
     for (int sig : {SIGINT, SIGTERM}) {
         // A signal ignored when the process started (nohup, a background job of a
         // non-interactive shell) stays ignored, as a shell's users expect.

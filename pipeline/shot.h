@@ -94,7 +94,8 @@ struct RayOrigin {
     const glm::vec3* surface_normal() const { return on_surface ? &normal : nullptr; }
 };
 
-// Immutable once built. Holds pointers into its own scene: move it, never copy it.
+// Immutable once built; nothing in it points into itself, so it may be moved (animate holds it
+// on the heap). Not copied: its Embree scenes are owned once.
 struct Shot {
     SceneDesc scene;
     ShotPlan plan;

@@ -17,6 +17,7 @@ namespace pleinair {
 // seam; its side is near 256 pixels and the threads are widened or narrowed by under 2% to fit.
 struct CanvasWeave {
     int side = 1;
+    float thread = 1;  // the threads' width as fitted to the tile, pixels
     std::vector<float> height;
     float at(int x, int y) const {
         const int u = ((x % side) + side) % side, v = ((y % side) + side) % side;
@@ -33,6 +34,7 @@ inline CanvasWeave make_canvas_weave(float thread_px) {
     const int periods = std::max(1, static_cast<int>(256.0f / (2.0f * want) + 0.5f));
     w.side = std::max(6, static_cast<int>(2.0f * want * static_cast<float>(periods) + 0.5f));
     const float t = static_cast<float>(w.side) / (2.0f * static_cast<float>(periods));
+    w.thread = t;
     w.height.resize(static_cast<size_t>(w.side) * w.side);
     constexpr float kPi = 3.14159265358979f;
     for (int y = 0; y < w.side; ++y)

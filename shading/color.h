@@ -38,6 +38,7 @@ enum class SplineBasis { kLinear, kCatmullRom };
 struct ColorSpline {
     std::vector<Color> colors;  // linear RGB, at least one
     SplineBasis basis = SplineBasis::kLinear;
+    bool operator==(const ColorSpline&) const = default;
 };
 
 inline Color eval(const ColorSpline& s, float x) {
@@ -71,6 +72,7 @@ struct Palette {
     float dark_cutoff_end = 0.40f;
     float mid_cutoff_start = 0.60f;
     float mid_cutoff_end = 0.68f;
+    bool operator==(const Palette&) const = default;
 };
 
 namespace color_detail {

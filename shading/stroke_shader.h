@@ -65,6 +65,7 @@ struct StrokeShaderParams {
     float edge_break = 0.0f;   // ... and broken into dabs there
     float holes = 0.0f;        // share of the outer crown opened into holes the sky shows through
     float hole_frequ = 0.35f;  // frequency of those holes, per tree unit
+    bool operator==(const StrokeShaderParams&) const = default;
 };
 
 // IV.4.1: N.L clamped, then outer leaves brightened and inner ones darkened through gains of

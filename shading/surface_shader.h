@@ -23,6 +23,7 @@ struct SurfaceShaderParams {
     float detail_s_frequ = 4.0f, detail_t_frequ = 0.6f;  // grass: thin vertical tufts
     float crest_shrink = 0.8f;   // how much of a sprite's height is lost when seen edge-on
     float inside_growth = 1.0f;  // deepest sprites are 1 + this times the size of top ones
+    bool operator==(const SurfaceShaderParams&) const = default;
 };
 
 // Peterson and Lee's aggregate normals: the lighting normal leans from the surface's normal

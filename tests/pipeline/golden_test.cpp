@@ -65,6 +65,34 @@ TEST(GoldenImages, TheGateSeesARecolouredStroke) {
     EXPECT_EQ(worst_block(good, good, w, frame.height), 0.0);
 }
 
+// A case's painted image in 8-bit sRGB: a scene painted as a still, or a frame of a shipped shot
+// painted by `pleinair animate` with the arguments its `animate` file holds (the path a user's
+// fly-through takes; issue 24's sky broke there alone).
+std::vector<uint8_t> paint_case(const fs::path& dir, int& width, int& height) {
+    if (!fs::exists(dir / "animate")) {
+        Frame frame = paint_still(load_scene(dir / "scene.json"));
+        width = frame.width, height = frame.height;
+        return frame_srgb8(frame);
+    }
+    std::string args = test::read_file(dir / "animate");
+    while (!args.empty() && (args.back() == '\n' || args.back() == ' ')) args.pop_back();
+    const fs::path out = test::temp_dir("golden-" + dir.filename().string());
+    const std::string shot = dir.filename().string().substr(5);  // shot-NAME
+    const auto r = test::run_pleinair("animate " + shot + " " + args + " -o " +
+                                      (out / "f_####.png").string() + " --progress log");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::vector<uint8_t> px;
+    for (const auto& e : fs::directory_iterator(out)) {
+        auto in = OIIO::ImageInput::open(e.path().string());
+        if (!in) continue;
+        width = in->spec().width, height = in->spec().height;
+        px.resize(static_cast<size_t>(width) * height * 3);
+        if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, px.data())) px.clear();
+    }
+    fs::remove_all(out);
+    return px;
+}
+
 TEST(GoldenImages, MatchTheirReferences) {
     fs::path root = test::source_dir() / "tests" / "golden";
     int cases = 0;
@@ -72,15 +100,15 @@ TEST(GoldenImages, MatchTheirReferences) {
         if (!entry.is_directory()) continue;
         const std::string name = entry.path().filename().string();
         SCOPED_TRACE(name);
-        SceneDesc scene = load_scene(entry.path() / "scene.json");
-        Frame frame = paint_still(scene);
-        std::vector<uint8_t> got = frame_srgb8(frame);
+        int width = 0, height = 0;
+        const std::vector<uint8_t> got = paint_case(entry.path(), width, height);
+        ASSERT_EQ(got.size(), static_cast<size_t>(width) * height * 3);
 
         auto in = OIIO::ImageInput::open((entry.path() / "reference.png").string());
         ASSERT_TRUE(in) << "missing reference; see tests/golden/README.md";
         const OIIO::ImageSpec& spec = in->spec();
-        ASSERT_EQ(spec.width, frame.width);
-        ASSERT_EQ(spec.height, frame.height);
+        ASSERT_EQ(spec.width, width);
+        ASSERT_EQ(spec.height, height);
         ASSERT_EQ(spec.nchannels, 3);
         std::vector<uint8_t> want(got.size());
         ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, want.data()));
@@ -90,11 +118,26 @@ TEST(GoldenImages, MatchTheirReferences) {
         for (size_t i = 0; i < got.size(); ++i) sq += std::pow(int(got[i]) - int(want[i]), 2);
         double rmse = std::sqrt(sq / got.size());
         EXPECT_LE(rmse, 1.0) << "RMSE in 8-bit levels";
-        EXPECT_LE(worst_block(got, want, frame.width, frame.height), 16.0)
+        EXPECT_LE(worst_block(got, want, width, height), 16.0)
             << "mean difference over the worst 8 x 8 block, in 8-bit levels";
         ++cases;
     }
-    EXPECT_GE(cases, 8);
+    EXPECT_GE(cases, 18);
+}
+
+// Every shipped shot has a golden frame (tests/golden/shot-NAME): a new shot joins the gate by
+// being shipped, or this fails until its case is added (make golden paints it).
+TEST(GoldenImages, EveryShippedShotHasAGoldenFrame) {
+    const fs::path root = test::source_dir();
+    int shots = 0;
+    for (const auto& e : fs::directory_iterator(root / "presets" / "scenes")) {
+        if (e.path().extension() != ".json" || !load_scene(e.path()).animated()) continue;
+        ++shots;
+        const fs::path dir = root / "tests" / "golden" / ("shot-" + e.path().stem().string());
+        EXPECT_TRUE(fs::exists(dir / "animate") && fs::exists(dir / "reference.png"))
+            << e.path().stem() << " has no golden frame in " << dir;
+    }
+    EXPECT_GE(shots, 5);
 }
 
 }  // namespace

@@ -5,9 +5,11 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <glm/geometric.hpp>
+#include <unordered_map>
 
 #include "pipeline/paint.h"
 #include "pipeline/scene.h"
@@ -195,6 +197,39 @@ TEST(LevelOfDetail, SurvivorsFillTheCrownsExtent) {
                  rms_moved = std::sqrt(moved / w);
     EXPECT_LT(rms_kept, 0.7 * rms_all);  // the inner leaves alone: a smaller crown
     EXPECT_NEAR(rms_moved, rms_all, 0.1 * rms_all) << rms_kept;
+}
+
+// Where sprites are painted, not only in the tree's LOD record: each far survivor's stroke is
+// larger by its tree's growth than the same leaf's stroke with the level of detail off (its
+// place moves a little towards the crown's edge, so its depth and size move by a few per cent).
+TEST(LevelOfDetail, FarSurvivorsArePaintedGrownByTheirTreesGrowth) {
+    const Shot shot = build_shot(oak_scene(150));
+    const FrameView view = still_view(shot.scene);
+    FrameSettings on = scene_frame_settings(shot.scene), off = on;
+    off.render.level_of_detail = false;
+    auto sprites = [&](const FrameSettings& fs) {
+        const FramePlan plan = plan_frame(shot, fs);
+        const FrameLod lod = level_of_detail(shot, view, fs.render);
+        return make_sprites({shot, view, plan, fs.render, lod, shot.sun_rays.get()});
+    };
+    const SpriteSet a = sprites(on), b = sprites(off);
+    const float growth = level_of_detail(shot, view, on.render).trees.at(0).growth;
+    ASSERT_GT(growth, 1.3f) << "far enough for the survivors to grow";
+    std::unordered_map<uint64_t, const Sprite*> plain;
+    for (const Sprite& sp : b.sprites)
+        if (sp.kind == SpriteKind::kLeaf) plain[sprite_key(sp)] = &sp;
+    std::vector<double> ratios;
+    for (const Sprite& sp : a.sprites) {
+        if (sp.kind != SpriteKind::kLeaf) continue;
+        const auto it = plain.find(sprite_key(sp));
+        if (it == plain.end()) continue;
+        ratios.push_back(std::sqrt(double(sp.half_w) * sp.half_l /
+                                   (double(it->second->half_w) * it->second->half_l)));
+    }
+    ASSERT_GT(ratios.size(), 50u);
+    std::sort(ratios.begin(), ratios.end());
+    EXPECT_NEAR(ratios[ratios.size() / 2], growth, 0.1 * growth)
+        << "the median survivor's linear size against its ungrown stroke";
 }
 
 TEST(LevelOfDetail, OffWithoutCirclesOrWhenTurnedOff) {

@@ -9,6 +9,8 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <glm/geometric.hpp>
 #include <limits>
 
@@ -19,6 +21,8 @@
 
 namespace pleinair {
 namespace {
+
+namespace fs = std::filesystem;
 
 std::string scene_text(const std::string& camera, const std::string& trees,
                        const std::string& extra = "") {
@@ -83,6 +87,56 @@ TEST(Paint, PigmentMixingAndCanvasSameBytesOnOneAndTwoThreads) {
 }
 
 // The instance transform the ray scenes use places a point exactly where the painter does.
+// Pigment mixing in a painted frame, not only in pigment_over(): a field of yellow strokes
+// laid over a field of blue ones on white canvas. Mixed as pigments (Kubelka-Munk), where
+// they overlap the paint turns green, as yellow and blue paint do; mixed as linear RGB they
+// make greys and no green. A renderer that composited plain RGB under pigment_mixing fails.
+TEST(Paint, YellowOverBlueTurnsGreenUnderPigmentMixing) {
+    const fs::path dir = test::temp_dir("pigment-frame");
+    {
+        std::ofstream ply(dir / "yb.ply");
+        ply << "ply\nformat ascii 1.0\nelement vertex 120\nproperty float x\nproperty float "
+               "y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty "
+               "uchar blue\nproperty float pscale\nend_header\n";
+        uint64_t state = 12345;  // a small LCG: the same strokes on every platform
+        auto next = [&] {
+            state = state * 6364136223846793005ull + 1442695040888963407ull;
+            return double(state >> 11) / double(1ull << 53);
+        };
+        for (int i = 0; i < 120; ++i) {
+            // Blue behind on the left, yellow in front on the right: they overlap in the middle.
+            const bool yellow = i >= 60;
+            const double u = next(), v = next();
+            ply << (yellow ? -0.5 + 2 * u : -1.5 + 2 * u) << " " << (-1 + 2 * v) << " "
+                << (yellow ? -9 : -10) << (yellow ? " 230 200 20" : " 30 60 200") << " 0.35\n";
+        }
+        std::ofstream(dir / "yb.json") << R"({
+            "camera": {"position": [0, 0, 0], "look_at": [0, 0, -10], "fov": 20,
+                       "width": 160, "height": 120},
+            "sun": {"direction": [0, 0, 1]},
+            "background": {"canvas": true, "canvas_color": "#ffffff"},
+            "materials": {"paint": {"shader": "earth"}},
+            "particles": [{"file": "yb.ply", "material": "paint", "color_amount": 1}]})";
+    }
+    // Pixels of the middle third that are green: G above both R and B by a tenth.
+    auto green = [&](bool pigments) {
+        const Frame f =
+            paint_still(load_scene(dir / "yb.json", {std::string("/render/pigment_mixing=") +
+                                                     (pigments ? "true" : "false")}));
+        int n = 0;
+        for (int y = 0; y < f.height; ++y)
+            for (int x = f.width / 3; x < 2 * f.width / 3; ++x) {
+                const float* p = &f.rgba[4 * (size_t(y) * f.width + x)];
+                n += p[1] > p[0] + 0.1f && p[1] > p[2] + 0.1f;
+            }
+        return n;
+    };
+    const int mixed = green(true), plain = green(false);
+    EXPECT_GT(mixed, 200) << "yellow over blue paint makes green";
+    EXPECT_LT(plain, mixed / 4) << "linear RGB makes greys: " << plain << " vs " << mixed;
+    fs::remove_all(dir);
+}
+
 TEST(Paint, TreePlacementsLinearPartMatchesPlace) {
     BuiltTree b;
     b.position = {1e4, 3, -2e4};

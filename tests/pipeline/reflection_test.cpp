@@ -102,5 +102,79 @@ TEST(Reflection, ThePondMirrorsItsFarBankOnlyWithReflections) {
     EXPECT_GT(with, without + 0.1) << with << " vs " << without;
 }
 
+// A known object: a dark post standing on the far bank of the small Mortefontaine's pond, seen
+// low across the water. With reflections on, the water right under the post darkens over about
+// the post's height, upside down (from the shore downwards); water beside it does not, and
+// without reflections nothing does. A mirror showing only the sky passes the correlation test
+// above; it fails this.
+TEST(Reflection, APostOnTheFarBankStandsUpsideDownInThePond) {
+    const auto file =
+        test::source_dir() / "tests" / "golden" / "mortefontaine-small" / "scene.json";
+    struct Painted {
+        Frame f;
+        std::vector<float> l;
+        std::vector<uint8_t> water;
+        float post_id = 0;
+    };
+    auto paint = [&](int reflection) {
+        const Shot shot = build_shot(load_scene(
+            file, {"/rocks/0/position=[-6,0,-45]", "/rocks/0/radius=5",
+                   "/rocks/0/scale=[0.1,1.2,0.1]", "/families={}", "/trees=[]", "/groups=[]",
+                   "/camera/position=[-4,2.5,10]", "/camera/look_at=[-6,0,-60]", "/camera/fov=30",
+                   "/water/reflection=" + std::to_string(reflection)}));
+        const FrameView view = still_view(shot.scene);
+        Painted p;
+        p.f = paint_frame(shot, view, scene_frame_settings(shot.scene, true));
+        p.l = frame_lightness(p.f);
+        p.water = look_regions(shot, view, p.f).water;
+        p.post_id = float(0x10000u + shot.scene.rocks[0].material);
+        return p;
+    };
+    const Painted on = paint(1), off = paint(0);
+    const int w = on.f.width, h = on.f.height;
+    // The post's columns and its top and bottom rows, from its strokes' ids.
+    int x0 = w, x1 = -1, top = h, bottom = -1;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if (on.f.object_id[size_t(y) * w + x] == on.post_id)
+                x0 = std::min(x0, x), x1 = std::max(x1, x), top = std::min(top, y),
+                bottom = std::max(bottom, y);
+    ASSERT_GE(x1, x0) << "the post is in view";
+    const int height = bottom - top + 1;
+    ASSERT_GE(height, 10);
+    ASSERT_LE(x1 - x0, 12) << "a post, not a wall";
+    // Mean L* of the water in columns [a, b] over rows [r0, r1].
+    auto mean = [&](const Painted& p, int a, int b, int r0, int r1) {
+        double sum = 0;
+        int n = 0;
+        for (int y = std::max(r0, 0); y <= std::min(r1, h - 1); ++y)
+            for (int x = std::max(a, 0); x <= std::min(b, w - 1); ++x)
+                if (p.water[size_t(y) * w + x]) sum += p.l[size_t(y) * w + x], ++n;
+        return n ? sum / n : -1.0;
+    };
+    // The first half of the mirrored post below the shore, and the same rows beside it.
+    const int r0 = bottom + 1, r1 = bottom + height / 2;
+    const int beside = x1 + 3 * (x1 - x0 + 1) + 6;
+    const double under_on = mean(on, x0, x1, r0, r1), under_off = mean(off, x0, x1, r0, r1);
+    const double beside_on = mean(on, beside, beside + (x1 - x0), r0, r1);
+    const double beside_off = mean(off, beside, beside + (x1 - x0), r0, r1);
+    ASSERT_GT(under_on, 0);
+    ASSERT_GT(under_off, 0);
+    ASSERT_GT(beside_on, 0);
+    ASSERT_GT(beside_off, 0);
+    // The mirror lightens the whole pond (it shows the sky); under the post it shows the post.
+    const double dark_on = beside_on - under_on, dark_off = beside_off - under_off;
+    EXPECT_GT(dark_on, dark_off + 6)
+        << "the water under the post, against the water beside it: " << dark_on
+        << " L* darker with reflections, " << dark_off << " without";
+    // Upside down: the dark reaches down about the post's height, not far past it.
+    const double far_on = mean(on, x0, x1, bottom + 2 * height, bottom + 3 * height);
+    const double far_beside =
+        mean(on, beside, beside + (x1 - x0), bottom + 2 * height, bottom + 3 * height);
+    if (far_on > 0 && far_beside > 0) {
+        EXPECT_LT(far_beside - far_on, 0.5 * dark_on) << "dark far below the post's reflection";
+    }
+}
+
 }  // namespace
 }  // namespace pleinair

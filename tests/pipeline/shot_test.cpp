@@ -131,19 +131,25 @@ TEST(Shot, PlansOnlyWhatTheSceneNeeds) {
 }
 
 TEST(Materials, LookupsByKindAndName) {
-    const SceneDesc s = lit_scene();
-    const MaterialTable m(s);
+    // The table holds its own copies: it outlives the scene it was built from (a shot that
+    // pointed into its scene painted garbage once moved, issue 24).
+    auto scene = std::make_unique<SceneDesc>(lit_scene());
+    const MaterialTable m(*scene);
+    const SceneDesc s = *scene;
+    scene.reset();
     ASSERT_EQ(m.size(), 2 * s.families.size() + s.materials.size());
     for (uint32_t f = 0; f < s.families.size(); ++f) {
-        EXPECT_EQ(m[m.leaf(f)].shader, &s.families[f].leaf_shader);
-        EXPECT_EQ(m[m.leaf(f)].palette, &s.families[f].leaf_palette);
+        EXPECT_EQ(*m[m.leaf(f)].shader, s.families[f].leaf_shader);
+        EXPECT_EQ(*m[m.leaf(f)].palette, s.families[f].leaf_palette);
         EXPECT_EQ(m[m.leaf(f)].kind, SpriteKind::kLeaf);
-        EXPECT_EQ(m[m.bark(f)].shader, &s.families[f].bark_shader);
+        EXPECT_EQ(*m[m.bark(f)].shader, s.families[f].bark_shader);
+        EXPECT_EQ(*m[m.bark(f)].palette, s.families[f].bark_palette);
         EXPECT_EQ(m[m.bark(f)].kind, SpriteKind::kBark);
         EXPECT_EQ(m[m.bark(f)].surface, nullptr);
     }
     for (uint32_t i = 0; i < s.materials.size(); ++i) {
-        EXPECT_EQ(m[m.surface(i)].surface, &s.materials[i].surface);
+        EXPECT_EQ(*m[m.surface(i)].surface, s.materials[i].surface);
+        EXPECT_EQ(*m[m.surface(i)].shader, s.materials[i].shader);
         EXPECT_EQ(m[m.surface(i)].kind, SpriteKind::kSurface);
         // The edge table is the shader's own.
         const EdgeTable e = make_edge_table(s.materials[i].shader.stroke_fullness);

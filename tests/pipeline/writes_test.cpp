@@ -201,6 +201,38 @@ TEST(Writes, SameFrameTwiceGivesIdenticalBytesInEveryFormat) {
     fs::remove_all(dir);
 }
 
+// A failing write injected without root: the shell's file-size limit (RLIMIT_FSIZE, inherited
+// by pleinair) makes every write past 16 KiB fail with EFBIG midway through the file. Each
+// output fails naming its file, exit 1; the earlier file of that name is byte-identical and no
+// temporary is left. Runs anywhere (FullDisk below needs root to mount a tmpfs).
+TEST(Writes, AWriteFailingMidwayLeavesTheEarlierFileAndNoTemporary) {
+    const fs::path dir = test::temp_dir("fsize-limit");
+    const std::string scene = "tests/golden/oak-study/scene.json";
+    for (const char* name : {"x.png", "x.tif", "x.exr"}) {
+        SCOPED_TRACE(name);
+        const fs::path out = dir / name;
+        auto r = run_pleinair("render " + scene + " -o " + out.string() +
+                              " --set /camera/width=16 --set /camera/height=16");
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        const std::string earlier = test::read_file(out);
+        ASSERT_LT(earlier.size(), 16000u);
+        // The same name again at full size, under the limit of 16 blocks of 1 KiB.
+        const std::string cmd = "cd '" + test::source_dir().string() + "' && (ulimit -f 16; '" +
+                                std::string(PLEINAIR_BIN) + "' render " + scene + " -o '" +
+                                out.string() + "' > '" + (dir / "err").string() + "' 2>&1)";
+        const int status = std::system(cmd.c_str());
+        ASSERT_TRUE(WIFEXITED(status));
+        EXPECT_EQ(WEXITSTATUS(status), 1) << test::read_file(dir / "err");
+        const std::string err = test::read_file(dir / "err");
+        EXPECT_NE(err.find(out.string()), std::string::npos) << err;
+        EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << "one line: " << err;
+        EXPECT_TRUE(test::read_file(out) == earlier) << "the earlier file was changed";
+        fs::remove(dir / "err");
+        EXPECT_EQ(partials_in(dir), std::vector<std::string>{});
+    }
+    fs::remove_all(dir);
+}
+
 // A 64 KiB tmpfs mounted for the test and filled to the brim: what a full disk does to every
 // kind of output. Needs root (CI runs it as root); skips saying so otherwise.
 class FullDisk : public ::testing::Test {

@@ -113,6 +113,20 @@ TEST(PigmentMixing, MixturesStayInTheGamutAndFinite) {
     }
 }
 
+// The tile repeats without a seam only if it holds whole periods of the weave (two threads):
+// a tile of 256 pixels with threads of exactly the width asked for cuts a thread at every
+// 256th column of a frame wider than that (5ff87d5's review fixed it; this holds the fix).
+TEST(Canvas, TheTileHoldsWholePeriodsOfTheWeave) {
+    for (float px : {3.0f, 4.7f, 6.0f, 7.5f, 11.3f, 19.0f, 64.0f}) {
+        SCOPED_TRACE(px);
+        const CanvasWeave w = make_canvas_weave(px);
+        const double periods = w.side / (2.0 * w.thread);
+        EXPECT_NEAR(periods, std::round(periods), 1e-4) << "a thread cut at the tile's edge";
+        EXPECT_GE(periods, 1.0);
+        EXPECT_NEAR(w.thread, px, 0.02 * px + 0.5 / periods) << "the threads keep their width";
+    }
+}
+
 TEST(Canvas, WeaveAndEdgesStayInRange) {
     for (float px : {1.0f, 3.0f, 7.5f, 64.0f}) {  // 1: held to 3
         const CanvasWeave w = make_canvas_weave(px);
