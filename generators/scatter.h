@@ -32,7 +32,7 @@ struct ScatteredTree {
 
 // Bridson's background grid holds cells of min_distance / sqrt(2) over the region's square;
 // past kMaxScatterCells of them (16 MB of grid) scatter_trees refuses, and a scene refuses the
-// group up front (pipeline/scene.cpp), naming both numbers.
+// group up front (pipeline/input/scene.cpp), naming both numbers.
 inline constexpr double kMaxScatterCells = 4e6;
 double scatter_grid_cells(const ScatterParams& params);
 

@@ -115,7 +115,7 @@ struct Range {
     double hi;
 };
 
-// The key table. V is a visitor with these members (see pipeline/json_params.cpp for readers
+// The key table. V is a visitor with these members (see pipeline/input/json_params.cpp for readers
 // and writers, tree_params.cpp for the validator):
 //   object(key, doc, fn)                  nested object; fn() visits its keys
 //   param(key, Param&, unit, doc)         a gaussian-varied number {"base": b, "var": v} or b

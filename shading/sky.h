@@ -12,7 +12,7 @@
 
 namespace pleinair {
 
-// The weather of a painted sky (scene key /sky; documented where parsed, pipeline/scene.cpp).
+// The weather of a painted sky (scene key /sky; documented where parsed, pipeline/input/scene.cpp).
 struct SkyParams {
     float cloud_cover = 0.45f;     // share of the sky in cloud, 0..1
     float cloud_scale = 1.0f;      // size of the clouds (1: a few across the view)

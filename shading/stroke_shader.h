@@ -17,7 +17,7 @@ namespace pleinair {
 
 // Every parameter of the thesis's Fig. 21 under its name, plus the few the thesis fixed in code
 // (marked "ours"). Defaults are Fig. 21's values where it shows one. Documented for users in
-// pipeline/shader_io.cpp, where they are parsed.
+// pipeline/input/shader_io.cpp, where they are parsed.
 struct StrokeShaderParams {
     // Lightness ranges of the palette's dark, mid and light splines (IV.5).
     float dark_cutoff_start = 0.30f;
@@ -233,7 +233,7 @@ struct StrokeConstants {
     // the palette's.
     Color own{0.0f};
     float own_amount = 0;
-    // What the stroke mirrors (still water, pipeline/reflection.h), linear and premultiplied by
+    // What the stroke mirrors (still water, pipeline/frame/reflection.h), linear and premultiplied by
     // its share: the palette's colour times mirror_keep, plus this. Black and 1: no mirror.
     Color mirror{0.0f};
     float mirror_keep = 1;

@@ -13,7 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "pipeline/presets.h"
+#include "pipeline/input/presets.h"
 
 extern char** environ;
 

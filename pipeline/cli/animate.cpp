@@ -16,12 +16,12 @@
 #include <stdexcept>
 
 #include "pipeline/cli/commands.h"
-#include "pipeline/error.h"
-#include "pipeline/frame_range.h"
-#include "pipeline/image_io.h"
-#include "pipeline/paint.h"
-#include "pipeline/partial_files.h"
-#include "pipeline/presets.h"
+#include "pipeline/input/error.h"
+#include "pipeline/input/frame_range.h"
+#include "pipeline/output/image_io.h"
+#include "pipeline/frame/paint_frame.h"
+#include "pipeline/output/partial_files.h"
+#include "pipeline/input/presets.h"
 
 extern char** environ;
 

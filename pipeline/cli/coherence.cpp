@@ -1,14 +1,14 @@
-// `pleinair bench coherence SHOT`: the coherence table of an animated shot (coherence.h).
-#include "pipeline/coherence.h"
+// `pleinair bench coherence SHOT`: the coherence table of an animated shot (coherence_measures.h).
+#include "pipeline/bench/coherence_measures.h"
 
 #include <unistd.h>
 
 #include <cstdio>
 
 #include "pipeline/cli/commands.h"
-#include "pipeline/error.h"
-#include "pipeline/paint.h"
-#include "pipeline/presets.h"
+#include "pipeline/input/error.h"
+#include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/presets.h"
 
 namespace pleinair {
 

@@ -9,19 +9,19 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "pipeline/contact_sheet.h"
-#include "pipeline/error.h"
-#include "pipeline/family.h"
-#include "pipeline/graftal_io.h"
-#include "pipeline/image_io.h"
-#include "pipeline/imposter_io.h"
-#include "pipeline/json_params.h"
-#include "pipeline/limits.h"
-#include "pipeline/presets.h"
-#include "pipeline/scene.h"
-#include "pipeline/shader_io.h"
-#include "pipeline/tree_io.h"
-#include "pipeline/write_file.h"
+#include "pipeline/output/contact_sheet.h"
+#include "pipeline/input/error.h"
+#include "pipeline/shot/family.h"
+#include "pipeline/input/graftal_io.h"
+#include "pipeline/output/image_io.h"
+#include "pipeline/input/imposter_io.h"
+#include "pipeline/input/json_params.h"
+#include "pipeline/input/limits.h"
+#include "pipeline/input/presets.h"
+#include "pipeline/input/scene.h"
+#include "pipeline/input/shader_io.h"
+#include "pipeline/output/tree_io.h"
+#include "pipeline/output/write_file.h"
 
 namespace pleinair {
 

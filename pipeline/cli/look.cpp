@@ -1,12 +1,12 @@
-// `pleinair bench look SCENE`: the look's measures of a still (look.h), one table row.
-#include "pipeline/look.h"
+// `pleinair bench look SCENE`: the look's measures of a still (look_measures.h), one table row.
+#include "pipeline/bench/look_measures.h"
 
 #include <cstdio>
 
 #include "pipeline/cli/commands.h"
-#include "pipeline/paint.h"
-#include "pipeline/presets.h"
-#include "pipeline/shot.h"
+#include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/presets.h"
+#include "pipeline/shot/shot.h"
 
 namespace pleinair {
 

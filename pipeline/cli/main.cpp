@@ -14,11 +14,11 @@
 
 #include "generators/tree.h"
 #include "pipeline/cli/commands.h"
-#include "pipeline/error.h"
-#include "pipeline/limits.h"
-#include "pipeline/partial_files.h"
-#include "pipeline/rays.h"
-#include "pipeline/scene.h"
+#include "pipeline/input/error.h"
+#include "pipeline/input/limits.h"
+#include "pipeline/output/partial_files.h"
+#include "pipeline/shot/rays.h"
+#include "pipeline/input/scene.h"
 
 namespace {
 

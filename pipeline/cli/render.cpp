@@ -6,11 +6,11 @@
 #include <mutex>
 
 #include "pipeline/cli/commands.h"
-#include "pipeline/error.h"
-#include "pipeline/image_io.h"
-#include "pipeline/limits.h"
-#include "pipeline/paint.h"
-#include "pipeline/presets.h"
+#include "pipeline/input/error.h"
+#include "pipeline/output/image_io.h"
+#include "pipeline/input/limits.h"
+#include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/presets.h"
 
 namespace pleinair {
 

@@ -9,14 +9,14 @@
 
 #include <string>
 
-#include "pipeline/graftal_draw.h"
-#include "pipeline/graftal_io.h"
-#include "pipeline/graftal_stage.h"
-#include "pipeline/imposter_io.h"
-#include "pipeline/imposter_stage.h"
-#include "pipeline/paint.h"
-#include "pipeline/presets.h"
-#include "pipeline/shot.h"
+#include "pipeline/shot/graftal_draw.h"
+#include "pipeline/input/graftal_io.h"
+#include "pipeline/frame/graftal_stage.h"
+#include "pipeline/input/imposter_io.h"
+#include "pipeline/frame/imposter_stage.h"
+#include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/presets.h"
+#include "pipeline/shot/shot.h"
 
 using namespace pleinair;
 

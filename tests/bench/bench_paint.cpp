@@ -5,8 +5,8 @@
 #include <benchmark/benchmark.h>
 #include <tbb/task_arena.h>
 
-#include "pipeline/paint.h"
-#include "pipeline/presets.h"
+#include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/presets.h"
 #include "shading/pigment.h"
 
 using namespace pleinair;

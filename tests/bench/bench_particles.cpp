@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "pipeline/image_io.h"
-#include "pipeline/paint.h"
-#include "pipeline/scene.h"
+#include "pipeline/output/image_io.h"
+#include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/scene.h"
 #include "ply_writer.h"
 
 using namespace pleinair;

@@ -12,8 +12,8 @@
 #include <string>
 
 #include "generators/rng.h"
-#include "pipeline/paint.h"
-#include "pipeline/presets.h"
+#include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/presets.h"
 
 using namespace pleinair;
 

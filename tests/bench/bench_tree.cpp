@@ -15,7 +15,7 @@
 #include "generators/tree.h"
 #include "generators/tree_mesh.h"
 #include "generators/trunk.h"
-#include "pipeline/presets.h"
+#include "pipeline/input/presets.h"
 
 using namespace pleinair;
 

@@ -8,14 +8,14 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/error.h"
-#include "pipeline/graftal_io.h"
-#include "pipeline/graftal_lod.h"
-#include "pipeline/imposter_io.h"
-#include "pipeline/json_params.h"
-#include "pipeline/particle_files.h"
-#include "pipeline/scene.h"
-#include "pipeline/shader_io.h"
+#include "pipeline/input/error.h"
+#include "pipeline/input/graftal_io.h"
+#include "pipeline/shot/graftal_lod.h"
+#include "pipeline/input/imposter_io.h"
+#include "pipeline/input/json_params.h"
+#include "pipeline/input/particle_files.h"
+#include "pipeline/input/scene.h"
+#include "pipeline/input/shader_io.h"
 
 namespace pleinair::fuzz {
 

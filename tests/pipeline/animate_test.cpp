@@ -10,7 +10,7 @@
 #include <fstream>
 #include <thread>
 
-#include "pipeline/partial_files.h"
+#include "pipeline/output/partial_files.h"
 #include "test_util.h"
 
 namespace pleinair {

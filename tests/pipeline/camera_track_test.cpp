@@ -1,6 +1,6 @@
 // Camera and sun tracks: keys hit bit for bit, a smooth path without loops, constant speed by arc
 // length, frames counted from 1, and bad tracks in scene files reported one line per problem.
-#include "pipeline/camera_track.h"
+#include "pipeline/input/camera_track.h"
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 #include <fstream>
 #include <glm/geometric.hpp>
 
-#include "pipeline/error.h"
-#include "pipeline/scene.h"
+#include "pipeline/input/error.h"
+#include "pipeline/input/scene.h"
 #include "test_util.h"
 
 namespace pleinair {

@@ -1,11 +1,11 @@
 // The coherence bench's measures on shots whose answers are known.
-#include "pipeline/coherence.h"
+#include "pipeline/bench/coherence_measures.h"
 
 #include <gtest/gtest.h>
 
-#include "pipeline/paint.h"
-#include "pipeline/scene.h"
-#include "pipeline/shot.h"
+#include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/scene.h"
+#include "pipeline/shot/shot.h"
 
 namespace pleinair {
 namespace {

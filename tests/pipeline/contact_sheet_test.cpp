@@ -1,5 +1,5 @@
 // Contact sheets: the grid, one painted member per cell, and the same bytes on any threads.
-#include "pipeline/contact_sheet.h"
+#include "pipeline/output/contact_sheet.h"
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>

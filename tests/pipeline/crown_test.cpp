@@ -6,10 +6,10 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 
-#include "pipeline/lod.h"
-#include "pipeline/paint.h"
-#include "pipeline/shot.h"
-#include "pipeline/sprites.h"
+#include "pipeline/frame/lod.h"
+#include "pipeline/frame/paint_frame.h"
+#include "pipeline/shot/shot.h"
+#include "pipeline/frame/sprites.h"
 #include "shading/stroke_shader.h"
 
 namespace pleinair {

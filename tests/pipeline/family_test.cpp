@@ -1,5 +1,5 @@
 // Families: keyed member seeds and identical bytes on any number of threads.
-#include "pipeline/family.h"
+#include "pipeline/shot/family.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>

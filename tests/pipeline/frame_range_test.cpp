@@ -1,9 +1,9 @@
 // Frame ranges and output patterns as farms write them, and the bad ones refused.
-#include "pipeline/frame_range.h"
+#include "pipeline/input/frame_range.h"
 
 #include <gtest/gtest.h>
 
-#include "pipeline/error.h"
+#include "pipeline/input/error.h"
 
 namespace pleinair {
 namespace {

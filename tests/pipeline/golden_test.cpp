@@ -6,8 +6,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include "pipeline/image_io.h"
-#include "pipeline/paint.h"
+#include "pipeline/output/image_io.h"
+#include "pipeline/frame/paint_frame.h"
 #include "test_util.h"
 
 namespace pleinair {

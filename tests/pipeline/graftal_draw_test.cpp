@@ -1,13 +1,13 @@
 // Graftals drawn by Cairo into patches: the area and colour of a known shape, growth and
 // opacity, the near plane, the size bound, and the same bytes on every thread.
-#include "pipeline/graftal_draw.h"
+#include "pipeline/shot/graftal_draw.h"
 
 #include <gtest/gtest.h>
 #include <tbb/parallel_for.h>
 
 #include <cmath>
 
-#include "pipeline/graftal_io.h"
+#include "pipeline/input/graftal_io.h"
 
 namespace pleinair {
 namespace {

@@ -1,7 +1,7 @@
 // Graftal sites and tufts for a fixed seed: counts by each placement rule, sites on the surface,
 // tuft graftals where and as the description says, and each site's graftals independent of the
 // others.
-#include "pipeline/graftal_instances.h"
+#include "pipeline/shot/graftal_instances.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "generators/rock.h"
-#include "pipeline/graftal_io.h"
+#include "pipeline/input/graftal_io.h"
 
 namespace pleinair {
 namespace {

@@ -1,11 +1,11 @@
 // Graftal description files: the shipped ones load with what they promise, each broken file is
 // refused with its key named, and the reference documents every key.
-#include "pipeline/graftal_io.h"
+#include "pipeline/input/graftal_io.h"
 
 #include <gtest/gtest.h>
 
-#include "pipeline/error.h"
-#include "pipeline/presets.h"
+#include "pipeline/input/error.h"
+#include "pipeline/input/presets.h"
 #include "test_util.h"
 
 namespace pleinair {

@@ -1,6 +1,6 @@
 // σ, ρ, τ and λ at known values; the tuft level filter's hysteresis, its timed transitions and
 // its replay; the local frame at its degenerate cases.
-#include "pipeline/graftal_lod.h"
+#include "pipeline/shot/graftal_lod.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Difference-image placement: the Pascal dot, filling that ends and fills where desire is,
 // candidates tried in a fixed order (deterministic, coherent as the desire moves), hidden
 // candidates refused by the ID image.
-#include "pipeline/graftal_placement.h"
+#include "pipeline/frame/graftal_placement.h"
 
 #include <gtest/gtest.h>
 

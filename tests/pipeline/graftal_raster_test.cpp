@@ -1,6 +1,6 @@
 // Scanline coverage: exact areas for shapes inside the buffer and clipped by its sides, the
 // nonzero rule for same-wound overlaps, and no harm from wild input.
-#include "pipeline/graftal_raster.h"
+#include "pipeline/shot/graftal_raster.h"
 
 #include <gtest/gtest.h>
 

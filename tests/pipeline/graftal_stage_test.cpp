@@ -1,7 +1,7 @@
 // The graftals stage in frames of the shipped truffula scenes: graftal-styled crowns and
 // surfaces paint no strokes, tufts gain levels as the camera nears them and grow in over time,
 // and the frame's bytes depend on neither the thread count nor the frames painted before.
-#include "pipeline/graftal_stage.h"
+#include "pipeline/frame/graftal_stage.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -11,11 +11,11 @@
 #include <glm/geometric.hpp>
 #include <iterator>
 
-#include "pipeline/error.h"
-#include "pipeline/graftal_lod.h"
-#include "pipeline/paint.h"
-#include "pipeline/presets.h"
-#include "pipeline/shot.h"
+#include "pipeline/input/error.h"
+#include "pipeline/shot/graftal_lod.h"
+#include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/presets.h"
+#include "pipeline/shot/shot.h"
 
 namespace pleinair {
 namespace {

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/error.h"
-#include "pipeline/paint.h"
-#include "pipeline/scene.h"
+#include "pipeline/input/error.h"
+#include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/scene.h"
 #include "ply_writer.h"
 #include "test_util.h"
 

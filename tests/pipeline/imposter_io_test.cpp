@@ -1,15 +1,15 @@
 // Graftal imposter description files: the shipped ones load with their atlases, each broken file
 // is refused with its key named, images are read relative to the file, and the reference
 // documents every key.
-#include "pipeline/imposter_io.h"
+#include "pipeline/input/imposter_io.h"
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <fstream>
 
-#include "pipeline/error.h"
-#include "pipeline/presets.h"
+#include "pipeline/input/error.h"
+#include "pipeline/input/presets.h"
 #include "test_util.h"
 
 namespace pleinair {

@@ -2,7 +2,7 @@
 // it fade in continuously as the eye moves (measured along an orbit, not judged from one
 // frame), each edge keeps its column, the vector field directs the quads, the control and its
 // coverage choose faces, and the truffula frames with imposters depend on no thread count.
-#include "pipeline/imposter_stage.h"
+#include "pipeline/frame/imposter_stage.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -12,10 +12,10 @@
 #include <set>
 
 #include "generators/rock.h"
-#include "pipeline/camera.h"
-#include "pipeline/paint.h"
-#include "pipeline/presets.h"
-#include "pipeline/shot.h"
+#include "pipeline/input/camera.h"
+#include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/presets.h"
+#include "pipeline/shot/shot.h"
 #include "test_util.h"
 
 namespace pleinair {

@@ -1,7 +1,7 @@
 // Landscapes painted: the plan builds only the ray scenes a frame needs, a lit flat ground
 // without casters has no shadowed stroke, the hard cases of the issue stay finite, a landscape
 // far from the origin paints the same picture, and the bytes do not depend on threads.
-#include "pipeline/landscape.h"
+#include "pipeline/shot/landscape.h"
 
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
@@ -11,9 +11,9 @@
 #include <set>
 #include <tuple>
 
-#include "pipeline/image_io.h"
-#include "pipeline/lod.h"
-#include "pipeline/paint.h"
+#include "pipeline/output/image_io.h"
+#include "pipeline/frame/lod.h"
+#include "pipeline/frame/paint_frame.h"
 
 namespace pleinair {
 namespace {

@@ -1,13 +1,13 @@
 // Limits: each checked before the work it bounds, refused with exit 2 and a line that gives
 // the limit and how to raise it, nothing written; raised, the same job runs.
-#include "pipeline/limits.h"
+#include "pipeline/input/limits.h"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
 
-#include "pipeline/image_io.h"
-#include "pipeline/paint.h"
+#include "pipeline/output/image_io.h"
+#include "pipeline/frame/paint_frame.h"
 #include "test_util.h"
 
 namespace pleinair {

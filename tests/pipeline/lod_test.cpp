@@ -1,6 +1,6 @@
 // The level of detail: distance values from the circles, fades, the survivors' growth and
 // spread, and hard cases (the camera inside a crown, at a tree's centre).
-#include "pipeline/lod.h"
+#include "pipeline/frame/lod.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -11,10 +11,10 @@
 #include <glm/geometric.hpp>
 #include <unordered_map>
 
-#include "pipeline/paint.h"
-#include "pipeline/scene.h"
-#include "pipeline/shot.h"
-#include "pipeline/sprites.h"
+#include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/scene.h"
+#include "pipeline/shot/shot.h"
+#include "pipeline/frame/sprites.h"
 
 namespace pleinair {
 namespace {

@@ -8,10 +8,10 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "pipeline/look.h"
-#include "pipeline/paint.h"
-#include "pipeline/scene.h"
-#include "pipeline/shot.h"
+#include "pipeline/bench/look_measures.h"
+#include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/scene.h"
+#include "pipeline/shot/shot.h"
 #include "test_util.h"
 
 namespace pleinair {

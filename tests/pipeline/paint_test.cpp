@@ -2,7 +2,7 @@
 // cases of the issue (particles at or behind the camera, huge and zero-size sprites, a limb seen
 // end-on, one-colour palettes, equal feather thresholds, an empty scene, a camera looking
 // straight up or down).
-#include "pipeline/paint.h"
+#include "pipeline/frame/paint_frame.h"
 
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
@@ -14,9 +14,9 @@
 #include <glm/geometric.hpp>
 #include <limits>
 
-#include "pipeline/composite.h"
-#include "pipeline/image_io.h"
-#include "pipeline/sprites.h"
+#include "pipeline/frame/composite.h"
+#include "pipeline/output/image_io.h"
+#include "pipeline/frame/sprites.h"
 #include "test_util.h"
 
 namespace pleinair {

@@ -1,7 +1,7 @@
 // Particles from other tools: a PLY file read the same in every format and type, its axes,
 // sizes, labels, normals and colours as the scene says, painted; hostile files refused with
 // the vertex and property, before anything is written.
-#include "pipeline/particle_files.h"
+#include "pipeline/input/particle_files.h"
 
 #include <gtest/gtest.h>
 
@@ -11,11 +11,11 @@
 #include <glm/geometric.hpp>
 #include <set>
 
-#include "pipeline/error.h"
-#include "pipeline/limits.h"
-#include "pipeline/paint.h"
-#include "pipeline/ply.h"
-#include "pipeline/scene.h"
+#include "pipeline/input/error.h"
+#include "pipeline/input/limits.h"
+#include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/ply.h"
+#include "pipeline/input/scene.h"
 #include "ply_writer.h"
 #include "test_util.h"
 

@@ -1,16 +1,16 @@
 // Preset files: every shipped preset loads; bad ones give one line per problem naming the file
 // and the key; saved presets load back to the same tree.
-#include "pipeline/presets.h"
+#include "pipeline/input/presets.h"
 
 #include <gtest/gtest.h>
 
 #include "generators/tree.h"
-#include "pipeline/error.h"
-#include "pipeline/graftal_io.h"
-#include "pipeline/imposter_io.h"
-#include "pipeline/json_params.h"
-#include "pipeline/scene.h"
-#include "pipeline/shader_io.h"
+#include "pipeline/input/error.h"
+#include "pipeline/input/graftal_io.h"
+#include "pipeline/input/imposter_io.h"
+#include "pipeline/input/json_params.h"
+#include "pipeline/input/scene.h"
+#include "pipeline/input/shader_io.h"
 #include "test_util.h"
 
 namespace pleinair {

@@ -1,5 +1,5 @@
 // Embree ray queries: hits, shadow rays, and no acne on ground far from the origin.
-#include "pipeline/rays.h"
+#include "pipeline/shot/rays.h"
 
 #include <gtest/gtest.h>
 

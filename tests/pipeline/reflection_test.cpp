@@ -1,15 +1,15 @@
-// Still water's mirror (pipeline/reflection.h) and the look's measures (pipeline/look.h): the
+// Still water's mirror (pipeline/frame/reflection.h) and the look's measures (pipeline/bench/look_measures.h): the
 // Fresnel curve, the measures on images made to have a known answer, and the small
 // Mortefontaine's pond mirroring its far bank only with reflections on.
-#include "pipeline/reflection.h"
+#include "pipeline/frame/reflection.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "pipeline/look.h"
-#include "pipeline/paint.h"
-#include "pipeline/shot.h"
+#include "pipeline/bench/look_measures.h"
+#include "pipeline/frame/paint_frame.h"
+#include "pipeline/shot/shot.h"
 #include "test_util.h"
 
 namespace pleinair {

@@ -5,10 +5,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "pipeline/error.h"
-#include "pipeline/paint.h"
-#include "pipeline/presets.h"
-#include "pipeline/scene.h"
+#include "pipeline/input/error.h"
+#include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/presets.h"
+#include "pipeline/input/scene.h"
 #include "test_util.h"
 
 namespace pleinair {

@@ -1,7 +1,7 @@
 // The shot and the frame's stages: a shot's cached sun light paints the same bytes as rays
 // traced per frame, frame settings never need a rebuild, a frame does not depend on the frames
 // painted before it, and each stage (plan, materials, sprites, depth order, tiles) on its own.
-#include "pipeline/shot.h"
+#include "pipeline/shot/shot.h"
 
 #include <gtest/gtest.h>
 #include <hwy/targets.h>
@@ -13,12 +13,12 @@
 #include <set>
 #include <unordered_set>
 
-#include "pipeline/bin.h"
-#include "pipeline/composite.h"
-#include "pipeline/image_io.h"
-#include "pipeline/paint.h"
-#include "pipeline/rays.h"
-#include "pipeline/sprites.h"
+#include "pipeline/frame/tile_bins.h"
+#include "pipeline/frame/composite.h"
+#include "pipeline/output/image_io.h"
+#include "pipeline/frame/paint_frame.h"
+#include "pipeline/shot/rays.h"
+#include "pipeline/frame/sprites.h"
 
 namespace pleinair {
 namespace {

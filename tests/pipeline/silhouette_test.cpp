@@ -1,6 +1,6 @@
 // Silhouette edges of known meshes: a cube from a corner and face on, an open box's rim, and a
 // generated rock whose silhouette closes into loops from any eye.
-#include "pipeline/silhouette.h"
+#include "pipeline/shot/silhouette.h"
 
 #include <gtest/gtest.h>
 

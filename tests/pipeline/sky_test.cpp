@@ -1,6 +1,6 @@
-// The painted sky's stage (pipeline/sky.h): its strokes follow the camera's rotation and never
+// The painted sky's stage (pipeline/frame/sky_sprites.h): its strokes follow the camera's rotation and never
 // its translation, stay on the sky side of the horizon, and are planned only when asked for.
-#include "pipeline/sky.h"
+#include "pipeline/frame/sky_sprites.h"
 
 #include <gtest/gtest.h>
 
@@ -8,11 +8,11 @@
 #include <cstring>
 #include <glm/geometric.hpp>
 
-#include "pipeline/error.h"
-#include "pipeline/image_io.h"
-#include "pipeline/look.h"
-#include "pipeline/paint.h"
-#include "pipeline/shot.h"
+#include "pipeline/input/error.h"
+#include "pipeline/output/image_io.h"
+#include "pipeline/bench/look_measures.h"
+#include "pipeline/frame/paint_frame.h"
+#include "pipeline/shot/shot.h"
 
 namespace pleinair {
 namespace {
@@ -172,7 +172,7 @@ TEST(SkyStage, BadKeysNameTheKey) {
 namespace pleinair {
 namespace {
 
-// The look's measures (look.h) on the small Mortefontaine with and without its painted sky:
+// The look's measures (look_measures.h) on the small Mortefontaine with and without its painted sky:
 // the sky carries brush texture at the scale of its strokes, and no bands in 8 bits.
 TEST(SkyStage, BrushesTheSkyWithoutBanding) {
     const auto file = PLEINAIR_SOURCE_DIR "/tests/golden/mortefontaine-sky/scene.json";

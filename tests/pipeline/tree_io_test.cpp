@@ -1,6 +1,6 @@
 // Tree files: PLY particles carry every attribute by name, meshes round-trip counts, world
 // coordinates are origin + local, and writing is atomic.
-#include "pipeline/tree_io.h"
+#include "pipeline/output/tree_io.h"
 
 #include <gtest/gtest.h>
 

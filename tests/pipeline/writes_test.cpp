@@ -18,11 +18,11 @@
 #include <map>
 #include <thread>
 
-#include "pipeline/error.h"
-#include "pipeline/image_io.h"
-#include "pipeline/partial_files.h"
-#include "pipeline/tree_io.h"
-#include "pipeline/write_file.h"
+#include "pipeline/input/error.h"
+#include "pipeline/output/image_io.h"
+#include "pipeline/output/partial_files.h"
+#include "pipeline/output/tree_io.h"
+#include "pipeline/output/write_file.h"
 #include "test_util.h"
 
 extern char** environ;

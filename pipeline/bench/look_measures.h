@@ -1,0 +1,65 @@
+// Measures of a painted frame's look (issue 13 §6), computed from its pixels and AOVs: how much
+// brush texture a region carries, whether a smooth region bands in 8-bit output, and how well
+// water mirrors the bank above it, and whether the open sky keeps to its palette.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "pipeline/input/camera.h"
+#include "pipeline/frame/frame_image.h"
+#include "pipeline/input/scene.h"
+
+namespace pleinair {
+
+struct Shot;
+struct FrameView;
+
+// Per pixel, CIE L* (0..100) of a frame's linear colour.
+std::vector<float> frame_lightness(const Frame& frame);
+
+// Brush texture at a scale: the RMS over the pixels of `mask` of L*'s standard deviation in
+// the (2 radius + 1)^2 window around each, counting only windows wholly inside the mask (a
+// region's edges would count as texture); 0 when none is. Radius 2 sees the edges of small
+// dabs, 8 those of broad strokes. `count`, when given, receives the pixels measured.
+double brush_texture(const std::vector<float>& lightness, int width, int height,
+                     const std::vector<uint8_t>& mask, int radius, uint64_t* count = nullptr);
+
+// Banding: along rows of `mask`, the mean length of runs of pixels whose 8-bit sRGB colour is
+// the same; a smooth gradient quantised to 8 bits makes long runs (bands), brush strokes short.
+double mean_flat_run(const Frame& frame, const std::vector<uint8_t>& mask);
+
+// The regions of a painted frame (AOVs required): sky (no surface or stroke with an id, the
+// ray above the horizon), trees (leaf and bark strokes), and water (camera rays that meet the
+// water's mesh first; empty when the shot has no camera scene or no water).
+struct LookRegions {
+    std::vector<uint8_t> sky, trees, water;
+};
+LookRegions look_regions(const Shot& shot, const FrameView& view, const Frame& frame);
+
+// The Pearson correlation of L* between each water pixel and the pixel mirrored about its
+// column's shore (the topmost water pixel): (x, y) against (x, 2 shore - 1 - y), over the pairs
+// whose mirrored pixel is inside the frame and not water. 0 when fewer than 16 pairs.
+double mirror_correlation(const std::vector<float>& lightness, int width, int height,
+                          const std::vector<uint8_t>& water, uint64_t* pairs = nullptr);
+
+// What colour a day sky may take (sRGB, per channel): the least and the most over the sky
+// palette's colours, the background's sky gradient and, under a painted sky, the shader's
+// distance hue (its strokes lie at infinity). A sky painted black and white where its palette
+// is pale blue lies far outside it (issue 24).
+struct SkyGamut {
+    float lo[3] = {1, 1, 1}, hi[3] = {0, 0, 0};
+};
+SkyGamut sky_gamut(const SceneDesc& scene);
+
+// The pixels of `mask` whose sRGB colour lies outside `gamut` widened by `margin` in any
+// channel.
+uint64_t pixels_outside(const Frame& frame, const std::vector<uint8_t>& mask, const SkyGamut& gamut,
+                        float margin);
+
+// The open sky of a frame, from its AOVs and the camera alone: look_regions' sky (no stroke or
+// surface with an id in front, the underpainting's far depth, the ray above the horizon) with
+// no more than 2% of other strokes' paint over it (a crown's thin edges have no id).
+std::vector<uint8_t> sky_region(const Camera& camera, const Frame& frame);
+
+}  // namespace pleinair

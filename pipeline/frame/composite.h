@@ -1,0 +1,89 @@
+// The compositing stage of a frame: the sprites composited nearest first, tile by tile in
+// parallel, each pixel until the strokes already painted cover it; then the background and the
+// underpainting where light still gets through; then the strokes over them.
+#pragma once
+
+#include <cstdint>
+
+#include "pipeline/frame/tile_bins.h"
+#include "pipeline/frame/frame_image.h"
+#include "pipeline/frame/frame_plan.h"
+#include "pipeline/shot/rays.h"
+#include "pipeline/frame/sprites.h"
+
+namespace pleinair {
+
+struct Shot;
+struct SceneDesc;
+class RayScene;
+
+// A frame of the camera's size, all zero, AOV buffers allocated when planned.
+Frame make_frame(const Camera& cam, bool aovs);
+
+// The strokes of a frame composited front to back, before what lies under them: per pixel the
+// premultiplied colour gathered and the light still let through (1 where no stroke is).
+struct StrokeLayer {
+    int width = 0, height = 0;
+    float cutoff = 0;            // render/coverage_cutoff
+    std::vector<float> color;    // 3 per pixel
+    std::vector<float> through;  // 1 per pixel
+    // Pigment mixing (FramePlan::pigment): 4 pigment concentrations gathered per pixel, their
+    // residual colour gathered in `color` (shading/pigment.h); empty otherwise.
+    std::vector<float> pigment;
+    uint64_t fragments = 0;  // pixel samples shaded
+    // Traced frames only (FramePlan::trace): per pixel the sprite indices of the two nearest
+    // strokes more than 5% opaque there, ~0u for none, and the weight of the first's order
+    // when the two were blended as their eye distances crossed (1 when not).
+    std::vector<uint32_t> first, second;
+    std::vector<float> first_weight;
+    // Nothing under the strokes can change the pixel by more than the cutoff.
+    bool covered(size_t pixel) const { return !(through[pixel] > cutoff); }
+};
+
+// Composites the binned sprites nearest first, skipping pixels the nearer strokes already
+// cover (at most coverage_cutoff of their light left); while the camera moves, strokes whose
+// eye distances cross blend from one order to the other over render/order_blend_frames
+// (composite.cpp: TileLayer). Fills the AOVs of the nearest stroke more than half opaque when
+// the plan asks.
+// `progress`, when set, hears ("paint", done) at each whole percent of the tiles.
+// `behind`, when set, is a layer these strokes lie behind: they are painted only where it
+// leaves light through (the painted sky behind every other stroke).
+StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& sprites, const TileBins& bins,
+                          const FramePlan& plan, const RenderSettings& settings, Frame& frame,
+                          const std::function<void(const char*, double)>* progress = nullptr,
+                          const StrokeLayer* behind = nullptr);
+
+// Sky and ground seen from the camera (or the canvas colour), with slow noise, where the
+// strokes let it show; under the painted sky's strokes (`sky`, painted behind `strokes`) when
+// the scene has them.
+void paint_background(const SceneDesc& scene, const Camera& cam, const StrokeLayer& strokes,
+                      Frame& frame, const StrokeLayer* sky = nullptr);
+
+// The background's colour (linear, before its lattice and the painted sky) in a unit
+// direction: what a reflected ray that meets nothing sees when the scene has no painted sky.
+Color background_at(const Background& background, const glm::dvec3& direction);
+
+// The flat palette colour the underpainting gives a camera-scene hit `h` at `world` (normal n,
+// seen along dir): its material's palette at a middle-depth stroke's lightness, in the sun's
+// light and shadow, pushed into the distance when the plan has atmosphere; water mirrors what
+// it reflects when the plan has reflections.
+Color underpaint_color(const Shot& shot, const FrameView& view, const FramePlan& plan,
+                       const RenderSettings& settings, const RayScene* sun_rays, const RayHit& h,
+                       const glm::dvec3& world, glm::vec3 n, const glm::dvec3& dir);
+
+// A flat palette colour and a depth where the camera sees terrain, water, rocks or trunks, at
+// underpaint_scale of the resolution, so no sky shows between strokes, over the background.
+// Coverage is interpolated, so silhouettes stay soft. Only cells under pixels the strokes leave
+// open are traced (all of them when the AOVs ask for depth). Returns the camera rays traced.
+uint64_t paint_underpainting(const Shot& shot, const FrameView& view, const FramePlan& plan,
+                             const RenderSettings& settings, const RayScene* sun_rays,
+                             const StrokeLayer& strokes, Frame& frame);
+
+// The strokes over what the frame holds beneath them: equal to compositing every stroke, the
+// underpainting and the background back to front with "over", to within the cutoff.
+// With pigment mixing (plan.pigment) the strokes' paint and what lies under it mix as
+// pigments; with a canvas (plan.canvas) its weave shows where the paint is thin.
+void composite_strokes(const StrokeLayer& strokes, const FramePlan& plan,
+                       const RenderSettings& settings, Frame& frame);
+
+}  // namespace pleinair

@@ -1,0 +1,117 @@
+// plan_frame: every decision of a frame, from the shot's plan and the frame settings.
+#include "pipeline/frame/frame_plan.h"
+
+#include "pipeline/frame/lod.h"
+#include "pipeline/shot/shot.h"
+
+namespace pleinair {
+
+bool has_atmosphere_effect(const StrokeShaderParams& p) {
+    return p.dist_hue_strength > 0 || p.dist_sat_limiter > 0 || p.dist_value_min > 0 ||
+           p.dist_value_max < 1;
+}
+
+FramePlan plan_frame(const Shot& shot, const FrameSettings& settings) {
+    const SceneDesc& scene = shot.scene;
+    FramePlan plan;
+    auto add = [&](const char* name, bool ran, std::string why) {
+        plan.decisions.push_back({name, ran, std::move(why), 0, ""});
+    };
+    bool tint = false, atmos = false, sub = false;
+    for (const auto& f : scene.families)
+        for (const auto* p : {&f.leaf_shader, &f.bark_shader}) {
+            tint |= p->unique_tint_amt > 0;
+            atmos |= has_atmosphere_effect(*p);
+            sub |= p->sub_stroke_amt > 0 && p->sub_stroke_frequ >= 0;
+        }
+    if (!shot.sky.direction.empty()) sub |= scene.sky.shader.sub_stroke_amt > 0;
+    plan.bark = shot.plan.bark;
+    add("bark", plan.bark,
+        plan.bark ? "trunks and branches are painted as strokes" : "render/bark_coverage is 0");
+    plan.tint = tint;
+    add("tint", tint,
+        tint ? "a shader has unique_tint_amt > 0" : "unique_tint_amt is 0 in every shader");
+    plan.atmosphere = scene.has_atmosphere && atmos;
+    add("atmosphere", plan.atmosphere,
+        !scene.has_atmosphere ? "the scene has no atmosphere"
+        : atmos               ? "atmosphere near/far set and a shader has distance effects"
+                              : "every shader's distance effects are zero");
+    plan.sub_stroke = sub;
+    add("sub-stroke colour", sub,
+        sub ? "a shader has sub_stroke_amt > 0" : "sub_stroke_amt is 0 in every shader");
+    plan.aovs = settings.aovs;
+    add("aovs", settings.aovs, settings.aovs ? "asked for (--aovs)" : "not asked for");
+
+    plan.shadows = shot.plan.shadows;
+    plan.fragment_shadows =
+        plan.shadows && settings.render.shadow_samples == ShadowSamples::kFragment;
+    if (!plan.shadows)
+        plan.sun_light = SunLightSource::kNone;
+    else if (shot.plan.sun_moves)
+        plan.sun_light = SunLightSource::kFrameScene;
+    else if (shot.plan.sun_light && !plan.fragment_shadows &&
+             settings.render.shadows == scene.render.shadows)
+        plan.sun_light = SunLightSource::kShot;
+    else
+        plan.sun_light = SunLightSource::kShotScene;
+    const char* where =
+        plan.fragment_shadows ? "a 4 x 4 grid of rays per sprite" : "one ray per particle";
+    add("shadows", plan.shadows,
+        !scene.sun_casts_shadows ? "the sun casts no shadows: no shadow scene, no shadow ray"
+        : !plan.shadows          ? "nothing in the scene to cast a shadow"
+        : plan.sun_light == SunLightSource::kShot
+            ? "the still sun's light at each particle, traced once by the shot"
+        : plan.sun_light == SunLightSource::kFrameScene
+            ? std::string("the sun moves: its scene is built for this frame; ") + where
+            : std::string("the sun casts shadows through the stroke casters: ") + where);
+    plan.underpaint = shot.plan.underpaint;
+    add("underpaint", plan.underpaint,
+        plan.underpaint ? "terrain or rocks are visible: flat colour and depth under the strokes"
+                        : "no visible mesh (no terrain, no rocks)");
+    const bool circles = scene_has_circles(shot);
+    plan.lod = circles && settings.render.level_of_detail;
+    add("level of detail", plan.lod,
+        !circles ? "the camera carries no distance circles"
+        : plan.lod
+            ? "the camera's distance circles: leaves fade outside in, survivors grow, twigs' "
+              "bark cross-fades to the low-detail model"
+            : "render/level_of_detail is false: every tree at full detail");
+    plan.graftals = !shot.graftals.empty();
+    add("graftals", plan.graftals,
+        plan.graftals ? "some family or material is drawn in a graftal style: tufts' levels "
+                        "from λ, graftals drawn into patches and composited with the strokes"
+                      : "every family and material is painted with strokes");
+    plan.imposters = !shot.imposters.empty();
+    add("imposters", plan.imposters,
+        plan.imposters ? "some family or material carries graftal imposters: silhouette edges "
+                         "found, extruded and drawn from the atlas"
+                       : "no family or material names imposters");
+    plan.sky = !shot.sky.direction.empty();
+    add("sky", plan.sky,
+        plan.sky             ? "a painted sky: strokes at infinity, turned with the camera, "
+                               "painted where no surface hides the sky"
+        : !scene.sky.present ? "the scene has no /sky: the background's gradient"
+                             : "the background is a canvas");
+    plan.reflections =
+        scene.water.present && scene.water.reflection > 0 && shot.view_rays && settings.reflections;
+    add("reflections", plan.reflections,
+        plan.reflections ? "still water: each water stroke in view averages /water/mirror_rays rays"
+        : !scene.water.present          ? "the scene has no water"
+        : !(scene.water.reflection > 0) ? "/water/reflection is 0"
+        : !settings.reflections         ? "turned off for a baseline (coherence bench)"
+                                        : "no camera scene to reflect");
+    plan.pigment = settings.render.pigment_mixing;
+    add("pigment mixing", plan.pigment,
+        plan.pigment ? "strokes mix as Kubelka-Munk pigments in a latent space"
+                     : "render/pigment_mixing is off: alpha blending in linear RGB");
+    plan.canvas = settings.render.canvas_weave > 0;
+    add("canvas", plan.canvas,
+        plan.canvas ? "a canvas weave under thin paint and at the strokes' edges"
+                    : "render/canvas_weave is 0");
+    plan.bare_blend = settings.bare_blend;
+    plan.trace = settings.trace;
+    plan.noise_reseed = settings.noise_reseed;
+    return plan;
+}
+
+}  // namespace pleinair

@@ -1,0 +1,90 @@
+// The first stage of a frame: what it needs, decided from the shot and the frame settings
+// alone (DESIGN.md: "the plan"), each decision with the reason --explain prints.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "pipeline/input/camera.h"
+#include "pipeline/input/distance_circles.h"
+#include "pipeline/shot/pass_report.h"
+#include "pipeline/input/settings.h"
+
+namespace pleinair {
+
+struct Shot;
+struct FrameView;
+
+// How a frame is painted from a shot: nothing in here rebuilds anything.
+struct FrameSettings {
+    RenderSettings render;
+    bool aovs = false;  // depth, object id, alpha and lightness channels
+    // Benchmarks only: each sprite's footprint blended with a constant colour at opacity 0.5
+    // instead of shaded, to measure what the shader costs over the bare blend.
+    bool bare_blend = false;
+    // The coherence bench only (coherence_measures.h): keep the sprites and each pixel's two nearest
+    // strokes (FrameReport::trace); see the level of detail from `lod_view` instead of the
+    // frame's (frozen at another frame); shift every stroke's noise by `noise_reseed` (boiling).
+    bool trace = false;
+    const FrameView* lod_view = nullptr;
+    uint32_t noise_reseed = 0;
+    // The coherence bench only: false paints still water without its mirror (the baseline of
+    // the water's flicker).
+    bool reflections = true;
+    // Told when each stage starts (done 0) and how far the paint stage has come, for frames
+    // long enough to report on; called from worker threads (the callee serializes).
+    std::function<void(const char* stage, double done)> progress;
+};
+
+// What the camera track and the sun's keys give at the frame's time. The sun is the view's only
+// when the scene keys it; a still sun is the shot's (its light and casters were built for it).
+struct FrameView {
+    Camera camera;
+    glm::dvec3 sun_direction{0, 1, 0};  // towards the sun, unit
+    DistanceCircles circles;            // carried by the camera (IV.6)
+    // On a camera track, at `time` seconds: the level of detail replays the track up to it.
+    bool on_track = false;
+    double time = 0;
+    // How far the eye moves in one frame there (zero for a still): strokes whose distances from
+    // the eye are about to cross blend from one order to the other (composite.h).
+    double eye_speed = 0;
+};
+
+// How a frame learns each particle's light.
+enum class SunLightSource {
+    kNone,       // no shadows: every particle is lit
+    kShot,       // traced once by the shot (a still sun, per-particle shadows)
+    kShotScene,  // traced per frame through the shot's sun scene, for the particles it shows
+    kFrameScene  // the sun moves: its scene is built for this frame, then traced
+};
+
+struct FramePlan {
+    bool bark = false;        // bark strokes (grown by the shot)
+    bool tint = false;        // some shader has unique_tint_amt > 0
+    bool atmosphere = false;  // an atmosphere and some shader with a non-zero distance effect
+    bool sub_stroke = false;  // some shader varies colour inside strokes
+    bool aovs = false;
+    bool shadows = false;
+    SunLightSource sun_light = SunLightSource::kNone;
+    bool fragment_shadows = false;  // a 4 x 4 grid of shadow rays per sprite
+    bool underpaint = false;        // a visible mesh: flat colour under the strokes
+    bool bare_blend = false;
+    bool lod = false;          // the camera carries distance circles and level_of_detail is on
+    bool graftals = false;     // some family or material is drawn in a graftal style
+    bool imposters = false;    // some family or material carries graftal imposters
+    bool sky = false;          // a painted sky (sky_sprites.h): its strokes under every other
+    bool reflections = false;  // still water mirrors what its reflected rays find
+    bool pigment = false;      // strokes mix as pigments (shading/pigment.h)
+    bool canvas = false;       // a canvas weave under thin paint and at stroke edges
+    bool trace = false;
+    uint32_t noise_reseed = 0;
+    std::vector<PassReport> decisions;
+};
+
+FramePlan plan_frame(const Shot& shot, const FrameSettings& settings);
+
+// Whether a shader shows distance (hue, saturation or value ranges move with it).
+struct StrokeShaderParams;
+bool has_atmosphere_effect(const StrokeShaderParams& p);
+
+}  // namespace pleinair

@@ -1,0 +1,110 @@
+// The sprites stage of a frame: every particle projected to a camera-facing brush-stroke sprite,
+// frustum-culled, culled when hidden behind an opaque surface, and given the sun's light.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "pipeline/frame/frame_plan.h"
+#include "pipeline/shot/graftal_draw.h"
+#include "pipeline/frame/lod.h"
+#include "pipeline/shot/materials.h"
+#include "shading/stroke_shader.h"
+
+namespace pleinair {
+
+struct SceneDesc;
+struct Shot;
+class RayScene;
+
+// Shadows per fragment: the light at a 4 x 4 grid of points over the sprite, interpolated.
+constexpr int kShadowGrid = 4;
+using ShadowGrid = std::array<float, kShadowGrid * kShadowGrid>;
+float grid_at(const ShadowGrid& g, float s, float t);
+
+struct Sprite {
+    float x = 0, y = 0, depth = 0;
+    float range = 0;  // distance from the eye: what the depth order sorts by
+    // The most its range can change in one frame against that of a sprite overlapping it on
+    // screen: the eye's travel times the sprite's angular radius (0 for a still camera).
+    float swap_speed = 0;
+    float half_w = 0, half_l = 0;  // across and along the stroke, pixels
+    float ax = 0, ay = 1;          // unit screen direction of the stroke's length
+    // Fading with distance (IV.6, IV.7): 1 whole, 0 gone. A fade raises the stroke's noise
+    // threshold (composite.cpp), so it breaks into dabs and vanishes with crisp edges.
+    float fade = 1;
+    int32_t grid = -1;   // its shadow grid, with shadows per fragment
+    int32_t patch = -1;  // a graftal's patch in SpriteSet::patches
+    MaterialId material;
+    uint32_t object_id = 0;
+    SpriteKind kind = SpriteKind::kLeaf;
+    // Which particle: stable from frame to frame (the coherence bench follows it).
+    uint32_t item = 0, particle = 0;
+    StrokeConstants k;
+};
+
+// A particle's key, unique in its shot: item, kind (3 bits) and index.
+inline uint64_t particle_key(uint32_t item, SpriteKind kind, uint32_t particle) {
+    return (uint64_t{item} << 35) | (uint64_t(kind) << 32) | particle;
+}
+inline uint64_t sprite_key(const Sprite& sp) { return particle_key(sp.item, sp.kind, sp.particle); }
+
+// Boiling, for the coherence bench (FrameSettings::noise_reseed): every stroke's noise moves by
+// an amount the reseed picks. 0 leaves it.
+void reseed_noise(StrokeConstants& k, uint32_t noise_reseed);
+
+// Half extents of a sprite's screen-aligned bounding box (the rotated rectangle's).
+void sprite_extent(const Sprite& sp, float& ex, float& ey);
+
+// Screen size in pixels of a world length at view depth z (thesis ch. I: brush strokes do not
+// shrink like geometry): true perspective at stroke_perspective 1, the size it has at the
+// camera's focus distance whatever the depth at 0, in between otherwise. The painter then
+// enlarges anything under min_stroke_px.
+float stroke_screen_px(const Camera& cam, const RenderSettings& r, double world, double depth);
+
+struct SpriteSet {
+    std::vector<Sprite> sprites;  // per tree (bark, then leaves), then per surface chunk
+    std::vector<ShadowGrid> grids;
+    std::vector<GraftalPatch> patches;  // the graftals stage's, one per kGraftal sprite
+    uint64_t leaf = 0, bark = 0, surface = 0, graftal = 0;
+    uint64_t culled = 0;  // behind the camera, off screen, too faint, faded out, or hidden
+    uint64_t faded = 0;   // of those, faded out by the level of detail
+    uint64_t hidden = 0;  // of those, behind an opaque surface
+    uint64_t shadow_rays = 0;
+};
+
+// Where rays towards the eye go to decide how much of a stroke is seen past the opaque
+// surfaces. A still camera: the frame's eye, from three heights on the sprite (its particle,
+// half way up and its top), so a stroke rising from behind a crest shows a third at a time.
+// A moving one (render/occlusion_frames n > 1): the camera at n times one frame apart around
+// the frame's, each ray from one of the three heights of the sprite as that camera draws it.
+// The times lie on a lattice fixed to the track's clock and each lattice time keeps its height,
+// so frame N + 1 casts n - 1 of frame N's rays again: the share seen changes by at most 1/n a
+// frame, whatever the silhouettes do.
+struct SeenWindow {
+    std::vector<Camera> cameras;   // empty: the frame's camera, at all three heights
+    std::vector<uint8_t> heights;  // per camera: 0, 1 or 2 (particle, half way, top)
+};
+SeenWindow seen_window(const SceneDesc& scene, const FrameView& view, const RenderSettings& rs);
+
+// What the sprites stage reads.
+struct SpriteStageInput {
+    const Shot& shot;
+    const FrameView& view;
+    const FramePlan& plan;
+    const RenderSettings& settings;
+    const FrameLod& lod;
+    // The sun's scene for this frame (the shot's, or one built for a moving sun); null when the
+    // plan takes no light from rays.
+    const RayScene* sun_rays = nullptr;
+    const SeenWindow* seen = nullptr;  // null: the frame's eye only
+};
+
+SpriteSet make_sprites(const SpriteStageInput& input);
+
+// Leaves of a graftal-styled family and strokes of a graftal-styled material: no sprite, the
+// graftals stage draws those crowns and surfaces (graftal_stage.h).
+bool drawn_as_graftals(const Shot& shot, size_t item, SpriteKind kind, size_t particle);
+
+}  // namespace pleinair

@@ -1,0 +1,65 @@
+// InputError and its one-line-per-problem format.
+#include "pipeline/input/error.h"
+
+namespace pleinair {
+
+std::string pointer_token(const std::string& key) {
+    std::string t;
+    for (char c : key) {
+        if (c == '~')
+            t += "~0";
+        else if (c == '/')
+            t += "~1";
+        else
+            t += c;
+    }
+    return t;
+}
+
+namespace {
+
+// `text` with control characters as C escapes (\n, \t, \x1b).
+std::string printable(const std::string& text) {
+    std::string s;
+    for (unsigned char c : text) {
+        if (c == '\n') {
+            s += "\\n";
+        } else if (c == '\t') {
+            s += "\\t";
+        } else if (c == '\r') {
+            s += "\\r";
+        } else if (c < 0x20 || c == 0x7f) {
+            static const char* kHex = "0123456789abcdef";
+            s += "\\x";
+            s += kHex[c >> 4];
+            s += kHex[c & 15];
+        } else {
+            s += static_cast<char>(c);
+        }
+    }
+    return s;
+}
+
+}  // namespace
+
+std::string format_problems(const std::string& source, const std::vector<Problem>& problems) {
+    std::string s;
+    for (const auto& p : problems) {
+        if (!s.empty()) s += '\n';
+        s.append(printable(source));
+        if (!p.pointer.empty()) s.append(": ").append(printable(p.pointer));
+        s.append(": ").append(printable(p.message));
+    }
+    return s;
+}
+
+InputError::InputError(std::string source, std::vector<Problem> problems)
+    : std::runtime_error(format_problems(source, problems)),
+      source_(std::move(source)),
+      problems_(std::move(problems)) {}
+
+InputError::InputError(std::string source, std::string pointer, std::string message)
+    : InputError(std::move(source),
+                 std::vector<Problem>{{std::move(pointer), std::move(message)}}) {}
+
+}  // namespace pleinair

@@ -1,0 +1,51 @@
+// Frame output through OpenImageIO, format from the extension: PNG (8-bit sRGB), TIFF (16-bit
+// sRGB), EXR (half float, linear, with AOV channels when the frame has them). Encoded in memory,
+// written to a temporary beside the target and renamed when complete; headers carry no time, so
+// the same frame gives the same bytes.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "pipeline/frame/frame_image.h"
+
+namespace pleinair {
+
+// True for .png, .tif, .tiff and .exr (any case).
+bool is_image_path(const std::filesystem::path& path);
+// True for the extension of an image format pleinair does not write (.jpg, .bmp, .webp, ...):
+// a path a user meant as an image, not as a folder.
+bool is_other_image_path(const std::filesystem::path& path);
+
+// Throws InputError for an unsupported extension (before anything is written) and
+// std::runtime_error naming the file if encoding or any write fails; no partial file remains
+// either way and an earlier file of the same name is untouched.
+void write_frame(const std::filesystem::path& path, const Frame& frame);
+
+// Whether `path` is an image OpenImageIO can open whose size is width x height (a frame a
+// resumed run keeps).
+bool image_has_size(const std::filesystem::path& path, int width, int height);
+
+// 8-bit sRGB RGB bytes of the frame (what a PNG holds), for tests and contact sheets.
+std::vector<uint8_t> frame_srgb8(const Frame& frame);
+
+// How many values of the frame's buffers are NaN or infinite: write_frame refuses a frame
+// with any (std::runtime_error, exit 1) rather than let a conversion turn one into a colour.
+size_t non_finite_values(const Frame& frame);
+
+// The bytes a pixel's converted copy takes while `path` is written (8-bit PNG, 16-bit TIFF,
+// EXR in float and then half), for the memory a job is estimated to need.
+double output_bytes_per_pixel(const std::filesystem::path& path, bool aovs);
+
+// Error of a frame against a reference of the same size, over the 8-bit sRGB values a viewer
+// sees (as 0..1 floats), through OpenImageIO's ImageBufAlgo::compare.
+struct ImageError {
+    double rmse = 0;
+    double psnr = 0;  // dB; infinite when identical
+    double max_error = 0;
+};
+ImageError compare_frames(const Frame& image, const Frame& reference);
+
+}  // namespace pleinair

@@ -1,0 +1,238 @@
+// Terrain, water and rocks to surfaces and strokes, with the materials chosen per particle.
+#include "pipeline/shot/landscape.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "generators/rock.h"
+#include "pipeline/input/camera_track.h"
+#include "shading/noise.h"
+#include "shading/portable_math.h"
+
+namespace pleinair {
+
+namespace {
+
+constexpr uint64_t kTerrainKey = 1, kWaterKey = 2, kNearKey = 3, kRockKey = 100;
+
+// Near-field strokes are this much smaller than the terrain's own, and a cell of their grid
+// (which holds as many as a section of the terrain) half as wide as a terrain stroke.
+constexpr float kNearStrokeScale = 0.25f;
+constexpr double kNearCellScale = 0.5;
+
+// The largest near-field circle the camera carries anywhere, and the ground points (x, z) it
+// passes over: the still camera's, or each frame's along the track.
+double near_field_path(const SceneDesc& s, std::vector<glm::dvec2>& eyes) {
+    double near = s.circles.near_field;
+    for (const CameraKey& k : s.camera_track.keys) near = std::max(near, k.near_field);
+    if (!(near > 0)) return 0;
+    if (s.camera_track.keys.empty()) {
+        eyes.push_back({s.camera_params.position.x, s.camera_params.position.z});
+        return near;
+    }
+    const int first = track_first_frame(s.camera_track, s.fps);
+    const int last = track_last_frame(s.camera_track, s.fps);
+    for (int f = first; f <= last; ++f) {
+        const glm::dvec3 p = track_at(s.camera_track, frame_time(f, s.fps)).position;
+        eyes.push_back({p.x, p.z});
+    }
+    return near;
+}
+
+// The near field's detail strokes: on a world grid of cells half a terrain stroke wide, those
+// within 1.2 near-field radii of any eye on the camera's path, in the order of their cells.
+void emit_near_field(const SceneDesc& s, const SurfaceStrokeParams& tp, float size,
+                     BuiltLandscape& out) {
+    std::vector<glm::dvec2> eyes;
+    const double near = near_field_path(s, eyes);
+    if (!(near > 0)) return;
+    const TerrainDesc& t = s.terrain;
+    const double cell = kNearCellScale * s.materials[t.material].shader.sprite_size * size;
+    if (!(cell > 0)) return;
+    const double reach = 1.2 * near;
+    std::set<std::pair<int, int>> picked;
+    for (const glm::dvec2& e : eyes) {
+        const int x0 = static_cast<int>(std::floor((e.x - reach) / cell));
+        const int x1 = static_cast<int>(std::floor((e.x + reach) / cell));
+        const int z0 = static_cast<int>(std::floor((e.y - reach) / cell));
+        const int z1 = static_cast<int>(std::floor((e.y + reach) / cell));
+        for (int x = x0; x <= x1; ++x)
+            for (int z = z0; z <= z1; ++z)
+                if (pmath::hypot((x + 0.5) * cell - e.x, (z + 0.5) * cell - e.y) < reach)
+                    picked.emplace(x, z);
+    }
+    std::vector<glm::ivec2> cells;
+    for (const auto& [x, z] : picked) cells.push_back({x, z});
+    const double level = s.water.present ? s.water.level : -1e300;
+    const GroundAt ground = [&](double x, double z, glm::vec3& pos, glm::vec3& n) {
+        const TerrainParams& p = t.params;
+        if (x < p.min.x || x > p.max.x || z < p.min.y || z > p.max.y) return false;
+        const double h = terrain_height(p, t.seed, x, z);
+        if (h < level - 0.02) return false;
+        const double d = 0.25 * cell;
+        const double dx = terrain_height(p, t.seed, x + d, z) - terrain_height(p, t.seed, x - d, z);
+        const double dz = terrain_height(p, t.seed, x, z + d) - terrain_height(p, t.seed, x, z - d);
+        pos = glm::vec3(glm::dvec3(x, h, z));
+        n = glm::vec3(glm::normalize(glm::dvec3(-dx, 2 * d, -dz)));
+        return true;
+    };
+    SurfaceParticles strokes;
+    emit_cell_strokes(cells, cell, tp, t.seed, kNearKey, ground, strokes);
+    for (size_t i = 0; i < strokes.size(); ++i)
+        strokes.material[i] =
+            static_cast<uint16_t>(terrain_material_at(s, glm::dvec3(strokes.position[i])));
+    out.near_chunk = out.chunks.size();
+    out.chunks.push_back(std::move(strokes));
+    out.chunk_size.push_back(size * kNearStrokeScale);
+}
+
+// The scene's stroke parameters with the material's detail threshold and the density applied.
+SurfaceStrokeParams strokes_for(const SurfaceStrokeParams& in, const Material& m, uint32_t index,
+                                float density, float& size) {
+    SurfaceStrokeParams p = in;
+    p.material = index;
+    p.detail_threshold = m.surface.detail_threshold;
+    const int n = std::max(1, static_cast<int>(std::lround(p.particles_per_cluster * density)));
+    // Fewer or more sprites cover the same area: each grows or shrinks by the square root.
+    size = std::sqrt(static_cast<float>(p.particles_per_cluster) / static_cast<float>(n));
+    p.particles_per_cluster = n;
+    return p;
+}
+
+// emit_surface_strokes over bands of section rows in parallel, one chunk per band in row
+// order: the same particles as one serial call, on any number of threads.
+void emit_bands(const GridSurface& g, const SurfaceStrokeParams& p, uint64_t seed, uint64_t key,
+                float size, BuiltLandscape& out, const StrokeKeep& keep) {
+    constexpr int kRows = 8;
+    const int bands = (std::max(p.particle_spans_v, 1) + kRows - 1) / kRows;
+    const size_t first = out.chunks.size();
+    out.chunks.resize(first + static_cast<size_t>(bands));
+    out.chunk_size.resize(out.chunks.size(), size);
+    tbb::parallel_for(0, bands, [&](int b) {
+        emit_surface_strokes(g, p, seed, key, out.chunks[first + static_cast<size_t>(b)], keep,
+                             b * kRows, (b + 1) * kRows);
+    });
+}
+
+}  // namespace
+
+size_t BuiltLandscape::stroke_count() const {
+    size_t n = 0;
+    for (const auto& c : chunks) n += c.size();
+    return n;
+}
+
+SurfaceParticles BuiltLandscape::all_strokes() const {
+    SurfaceParticles all;
+    all.reserve(stroke_count());
+    for (const auto& c : chunks) all.append(c);
+    return all;
+}
+
+uint32_t terrain_material_at(const SceneDesc& s, const glm::dvec3& world) {
+    const TerrainDesc& t = s.terrain;
+    uint32_t m = t.material;
+    const glm::dvec2 size = t.params.max - t.params.min;
+    const float u = static_cast<float>((world.x - t.params.min.x) / size.x);
+    const float v = static_cast<float>((world.z - t.params.min.y) / size.y);
+    const float offset = static_cast<float>(t.seed % 997) * 0.37f;
+    if (t.second_material >= 0 &&
+        noise_material(u, v, t.material_noise_frequency, t.material_threshold, offset))
+        m = static_cast<uint32_t>(t.second_material);
+    for (const MaterialRegion& r : t.regions) {
+        // The rim wanders by a quarter of the radius (slow noise), so a region reads as a
+        // patch of ground, not a drawn circle.
+        const double d = pmath::hypot(world.x - r.center.x, world.z - r.center.y) / r.radius;
+        const float rim =
+            0.75f + 0.5f * noise(static_cast<float>(world.x - r.center.x) * 0.35f + 31.7f,
+                                 static_cast<float>(world.z - r.center.y) * 0.35f + 11.3f);
+        if (d < rim) m = r.material;
+    }
+    if (t.bank_material >= 0 && s.water.present && world.y < s.water.level + t.bank_height)
+        m = static_cast<uint32_t>(t.bank_material);
+    return m;
+}
+
+namespace {
+
+// The particle files' strokes, in chunks small enough to spread over threads.
+void add_imported(const SceneDesc& s, BuiltLandscape& out) {
+    out.chunk_source.resize(out.chunks.size());
+    for (const ParticleFileDesc& p : s.particles) {
+        if (!p.particles) continue;
+        out.imported.push_back(p.particles);
+        const SurfaceParticles& all = p.particles->strokes;
+        for (size_t first = 0; first < all.size(); first += kImportedChunk) {
+            const size_t n = std::min(kImportedChunk, all.size() - first);
+            SurfaceParticles c;
+            c.append(all, first, n);
+            out.chunks.push_back(std::move(c));
+            out.chunk_size.push_back(1.0f);
+            out.chunk_source.push_back({p.particles.get(), first, p.color_amount});
+        }
+    }
+}
+
+void build_surfaces(const SceneDesc& s, BuiltLandscape& out) {
+    const float density = s.build.surface_density;
+    if (!s.terrain.present) return;
+    const TerrainDesc& t = s.terrain;
+    out.has_terrain = true;
+    GridSurface grid = generate_terrain(t.params, t.seed);
+    out.terrain_mesh = grid_mesh(grid);
+
+    float size = 1;
+    SurfaceStrokeParams tp =
+        strokes_for(t.strokes, s.materials[t.material], t.material, density, size);
+    const double level = s.water.present ? s.water.level : -1e300;
+    emit_bands(grid, tp, t.seed, kTerrainKey, size, out, [&](SurfaceParticles& p, size_t i) {
+        const glm::vec3& ground = p.position[i];
+        if (s.water.present && ground.y < level - 0.02) return false;
+        p.material[i] = static_cast<uint16_t>(terrain_material_at(s, glm::dvec3(ground)));
+        return true;
+    });
+    emit_near_field(s, tp, size, out);
+
+    if (s.water.present) {
+        out.has_water = true;
+        const WaterDesc& w = s.water;
+        GridSurface plane;
+        plane.nu = plane.nv = 2;
+        const float y = static_cast<float>(w.level);
+        const auto& mn = t.params.min;
+        const auto& mx = t.params.max;
+        plane.positions = {glm::vec3(mn.x, y, mn.y), glm::vec3(mx.x, y, mn.y),
+                           glm::vec3(mn.x, y, mx.y), glm::vec3(mx.x, y, mx.y)};
+        out.water_mesh = grid_mesh(plane);
+        SurfaceStrokeParams wp =
+            strokes_for(w.strokes, s.materials[w.material], w.material, density, size);
+        emit_bands(plane, wp, t.seed, kWaterKey, size, out, [&](SurfaceParticles& p, size_t i) {
+            const glm::vec3& q = p.position[i];
+            return terrain_height(t.params, t.seed, q.x, q.z) < level + 0.05;
+        });
+    }
+
+    for (size_t i = 0; i < s.rocks.size(); ++i) {
+        const RockDesc& r = s.rocks[i];
+        out.rocks.push_back(generate_rock(r.params, r.seed, r.position));
+        SurfaceStrokeParams rp =
+            strokes_for(r.strokes, s.materials[r.material], r.material, density, size);
+        out.chunks.emplace_back();
+        out.chunk_size.push_back(size);
+        emit_mesh_strokes(out.rocks.back(), rp, r.seed, kRockKey + i, out.chunks.back());
+    }
+}
+
+}  // namespace
+
+BuiltLandscape build_landscape(const SceneDesc& s) {
+    BuiltLandscape out;
+    build_surfaces(s, out);
+    add_imported(s, out);
+    return out;
+}
+
+}  // namespace pleinair

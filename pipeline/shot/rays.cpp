@@ -1,0 +1,394 @@
+// Embree device, scenes and queries. Opaque surfaces and stroke casters live in two Embree
+// scenes: a shadow ray first asks the opaque one whether anything blocks it (any hit ends the
+// query), then walks the casters with an occlusion filter that evaluates each stroke's mask.
+#include "pipeline/shot/rays.h"
+
+#include <embree3/rtcore.h>
+#include <pmmintrin.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <xmmintrin.h>
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "shading/portable_math.h"
+
+namespace pleinair {
+
+FlushDenormals::FlushDenormals() : saved_(_mm_getcsr()) {
+    _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+    _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+}
+
+FlushDenormals::~FlushDenormals() { _mm_setcsr(saved_); }
+
+float ray_epsilon(const glm::dvec3& p) {
+    double m = std::max({1.0, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+    return static_cast<float>(32.0 * std::numeric_limits<float>::epsilon() * m);
+}
+
+namespace {
+
+// A caster as the filter reads it: its card relative to the anchor, as Embree sees it.
+struct Card {
+    glm::vec3 center;
+    glm::vec3 axis_s, axis_t;
+    float half_w, half_l;
+    StrokeNoise noise;
+};
+
+// What the caster filter reads, per caster geometry.
+struct CasterSet {
+    std::vector<Card> cards;
+    const StrokeShaderParams* shader = nullptr;
+    const EdgeTable* edge = nullptr;
+};
+
+// The filter's per-ray state rides behind Embree's context (Embree's documented way to pass
+// data to callbacks).
+struct ShadowContext {
+    RTCIntersectContext ctx;
+    ShadowMode mode = ShadowMode::kTransmissive;
+    // Optical depth in fixed point (1/65536 of a halving): an integer sum does not depend on
+    // the order Embree reports the cards in, so neither do the bytes of the image.
+    uint64_t depth = 0;
+    bool blocked = false;
+    // Embree may report a primitive more than once (spatial splits): count each card once.
+    static constexpr int kSeen = 32;
+    uint32_t seen[kSeen];
+    int n_seen = 0;
+    int overflow = 0;
+};
+
+constexpr uint64_t kOpaqueDepth = 10 * 65536;  // 2^-10: a thousandth of the light
+
+// Opacity of caster `c` where the ray crosses its card.
+float caster_opacity(const CasterSet& set, uint32_t prim, const glm::vec3& org,
+                     const glm::vec3& dir) {
+    const Card& c = set.cards[prim];
+    const glm::vec3 n = glm::cross(c.axis_s, c.axis_t);
+    const float dn = glm::dot(dir, n);
+    if (std::abs(dn) < 1e-12f) return 0.0f;
+    const glm::vec3& center = c.center;
+    const float t = glm::dot(center - org, n) / dn;
+    const glm::vec3 rel = org + dir * t - center;
+    const float s = 0.5f + 0.5f * glm::dot(rel, c.axis_s) / c.half_w;
+    const float tt = 0.5f + 0.5f * glm::dot(rel, c.axis_t) / c.half_l;
+    if (!(s > 0.0f && s < 1.0f && tt > 0.0f && tt < 1.0f)) return 0.0f;
+    const StrokeShaderParams& p = *set.shader;
+    const float e = edge_mask(*set.edge, s, tt, p.stroke_fullness);
+    if (e <= p.stroke_feather_min) return 0.0f;
+    return stroke_opacity(p, stroke_noise(c.noise, s, tt, 1), e);
+}
+
+void caster_filter(const RTCFilterFunctionNArguments* args) {
+    auto* sc = reinterpret_cast<ShadowContext*>(const_cast<RTCIntersectContext*>(args->context));
+    const auto* set = static_cast<const CasterSet*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        const uint32_t prim = RTCHitN_primID(args->hit, args->N, i);
+        bool seen = false;
+        for (int k = 0; k < sc->n_seen; ++k) seen |= sc->seen[k] == prim;
+        if (seen) {
+            args->valid[i] = 0;
+            continue;
+        }
+        if (sc->n_seen < ShadowContext::kSeen)
+            sc->seen[sc->n_seen++] = prim;
+        else
+            ++sc->overflow;
+        const glm::vec3 org(RTCRayN_org_x(args->ray, args->N, i),
+                            RTCRayN_org_y(args->ray, args->N, i),
+                            RTCRayN_org_z(args->ray, args->N, i));
+        const glm::vec3 dir(RTCRayN_dir_x(args->ray, args->N, i),
+                            RTCRayN_dir_y(args->ray, args->N, i),
+                            RTCRayN_dir_z(args->ray, args->N, i));
+        const float a = caster_opacity(*set, prim, org, dir);
+        if (sc->mode == ShadowMode::kThreshold) {
+            if (a > 0.5f) {
+                sc->blocked = true;
+                continue;  // accept: the ray is blocked
+            }
+        } else if (a > 0.0f) {
+            sc->depth += static_cast<uint64_t>(
+                std::lround(-pmath::log2(std::max(1.0f - a, 1e-6f)) * 65536.0f));
+            if (sc->depth >= kOpaqueDepth) {
+                sc->blocked = true;
+                continue;  // accept: nothing meaningful gets through
+            }
+        }
+        args->valid[i] = 0;  // reject: keep walking through the cards
+    }
+}
+
+void fill_ray(RTCRay& r, const glm::dvec3& world, const glm::dvec3& anchor, const glm::vec3& d,
+              float tmax, const glm::vec3* n) {
+    const float eps = ray_epsilon(world);
+    glm::vec3 o(world - anchor);
+    if (n) o += (glm::dot(*n, d) < 0 ? -*n : *n) * eps;
+    r.org_x = o.x, r.org_y = o.y, r.org_z = o.z;
+    r.dir_x = d.x, r.dir_y = d.y, r.dir_z = d.z;
+    r.tnear = eps;  // the offset along the ray
+    r.tfar = std::max(tmax, eps);
+    r.time = 0;
+    r.mask = 0xFFFFFFFFu;
+    r.id = 0;
+    r.flags = 0;
+}
+
+// A quad mesh's vertex and index buffers, placed by offset - anchor.
+void set_quad_buffers(RTCGeometry g, const QuadMesh& mesh, const glm::dvec3& shift) {
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
+    for (size_t i = 0; i < mesh.positions.size(); ++i) {
+        glm::dvec3 p = glm::dvec3(mesh.positions[i]) + shift;
+        v[3 * i] = static_cast<float>(p.x);
+        v[3 * i + 1] = static_cast<float>(p.y);
+        v[3 * i + 2] = static_cast<float>(p.z);
+    }
+    auto* q = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), mesh.quads.size()));
+    for (size_t i = 0; i < mesh.quads.size(); ++i)
+        for (int k = 0; k < 4; ++k) q[4 * i + k] = mesh.quads[i][k];
+}
+
+std::string& device_config() {
+    static std::string config = kPortableRayDevice;
+    return config;
+}
+
+RTCDevice new_device() {
+    RTCDevice d = rtcNewDevice(device_config().empty() ? nullptr : device_config().c_str());
+    if (!d)
+        throw std::runtime_error("Embree: cannot create a device (error " +
+                                 std::to_string(rtcGetDeviceError(nullptr)) + ")");
+    return d;
+}
+
+}  // namespace
+
+void set_ray_device_config(const std::string& config) { device_config() = config; }
+
+struct RayMeshes::Impl {
+    RTCDevice device = nullptr;
+    std::vector<RTCScene> scenes;  // one per mesh
+    ~Impl() {
+        for (RTCScene s : scenes) rtcReleaseScene(s);
+        if (device) rtcReleaseDevice(device);
+    }
+};
+
+RayMeshes::RayMeshes() : impl_(std::make_shared<Impl>()) { impl_->device = new_device(); }
+RayMeshes::~RayMeshes() = default;
+
+uint32_t RayMeshes::add(const QuadMesh& mesh) {
+    RTCScene scene = rtcNewScene(impl_->device);
+    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_MEDIUM);
+    RTCGeometry g = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_QUAD);
+    set_quad_buffers(g, mesh, glm::dvec3(0.0));
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(scene, g);
+    rtcReleaseGeometry(g);
+    impl_->scenes.push_back(scene);
+    return static_cast<uint32_t>(impl_->scenes.size() - 1);
+}
+
+void RayMeshes::commit() {
+    tbb::parallel_for(size_t{0}, impl_->scenes.size(), [&](size_t i) {
+        FlushDenormals ftz;
+        rtcCommitScene(impl_->scenes[i]);
+    });
+}
+
+uint32_t RayMeshes::size() const { return static_cast<uint32_t>(impl_->scenes.size()); }
+
+struct RayScene::Impl {
+    glm::dvec3 anchor;
+    std::shared_ptr<RayMeshes::Impl> shared;  // keeps the device and instanced meshes alive
+    // Per geometry id: how a hit's object-space normal turns into the world's (identity for
+    // plain meshes; the inverse transpose of an instance's linear part).
+    std::vector<glm::mat3> normal_to_world;
+    RTCDevice device = nullptr;
+    RTCScene scene = nullptr;    // opaque surfaces
+    RTCScene casters = nullptr;  // stroke cards, created on first use
+    uint32_t meshes = 0;
+    uint32_t caster_total = 0;
+    std::vector<std::unique_ptr<CasterSet>> sets;
+};
+
+RayScene::RayScene(const glm::dvec3& anchor, const RayMeshes* shared)
+    : impl_(std::make_unique<Impl>()) {
+    FlushDenormals ftz;
+    impl_->anchor = anchor;
+    if (shared) {
+        impl_->shared = shared->impl_;
+        impl_->device = shared->impl_->device;
+        rtcRetainDevice(impl_->device);
+    } else {
+        impl_->device = new_device();
+    }
+    impl_->scene = rtcNewScene(impl_->device);
+    // Medium: scenes are built once per frame, and high quality costs more than it saves.
+    rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_MEDIUM);
+}
+
+RayScene::~RayScene() {
+    if (impl_->casters) rtcReleaseScene(impl_->casters);
+    if (impl_->scene) rtcReleaseScene(impl_->scene);
+    if (impl_->device) rtcReleaseDevice(impl_->device);
+}
+
+// Commits g, attaches it to the opaque scene and records how its normals reach the world.
+uint32_t RayScene::attach(void* geometry, const glm::mat3& normal_to_world) {
+    auto g = static_cast<RTCGeometry>(geometry);
+    if (!g)
+        throw std::runtime_error("Embree: cannot create a geometry (error " +
+                                 std::to_string(rtcGetDeviceError(impl_->device)) + ")");
+    rtcCommitGeometry(g);
+    uint32_t id = rtcAttachGeometry(impl_->scene, g);
+    rtcReleaseGeometry(g);
+    if (id == RTC_INVALID_GEOMETRY_ID)
+        throw std::runtime_error("Embree: cannot attach a geometry (error " +
+                                 std::to_string(rtcGetDeviceError(impl_->device)) + ")");
+    ++impl_->meshes;
+    impl_->normal_to_world.resize(std::max<size_t>(impl_->normal_to_world.size(), id + 1),
+                                  glm::mat3(1.0f));
+    impl_->normal_to_world[id] = normal_to_world;
+    return id;
+}
+
+uint32_t RayScene::add_mesh(const QuadMesh& mesh, const glm::dvec3& offset) {
+    RTCGeometry g = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_QUAD);
+    set_quad_buffers(g, mesh, offset - impl_->anchor);
+    return attach(g, glm::mat3(1.0f));
+}
+
+uint32_t RayScene::add_instance(uint32_t mesh, const glm::dmat3& linear, const glm::dvec3& offset) {
+    if (!impl_->shared || mesh >= impl_->shared->scenes.size())
+        throw std::invalid_argument("RayScene::add_instance: no shared mesh " +
+                                    std::to_string(mesh));
+    RTCGeometry g = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(g, impl_->shared->scenes[mesh]);
+    // Column-major 3x4: the linear part's columns, then the translation from the anchor.
+    const glm::dvec3 t = offset - impl_->anchor;
+    float xfm[12];
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) xfm[3 * c + r] = static_cast<float>(linear[c][r]);
+    xfm[9] = static_cast<float>(t.x), xfm[10] = static_cast<float>(t.y);
+    xfm[11] = static_cast<float>(t.z);
+    rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+    // Normals only need a direction: the matrix is scaled to unit size before it is inverted,
+    // so tiny and huge placements alike give finite, well-conditioned normals.
+    double big = 0;
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) big = std::max(big, std::abs(linear[c][r]));
+    return attach(
+        g, big > 0 ? glm::mat3(glm::transpose(glm::inverse(linear / big))) : glm::mat3(1.0f));
+}
+
+uint32_t RayScene::add_casters(const std::vector<StrokeCaster>& casters,
+                               const StrokeShaderParams& shader, const EdgeTable& edge) {
+    if (!impl_->casters) {
+        impl_->casters = rtcNewScene(impl_->device);
+        // Medium quality builds without spatial splits: fewer repeated filter calls.
+        rtcSetSceneBuildQuality(impl_->casters, RTC_BUILD_QUALITY_MEDIUM);
+    }
+    auto set = std::make_unique<CasterSet>();
+    set->shader = &shader;
+    set->edge = &edge;
+    const size_t n = casters.size();
+    set->cards.resize(n);
+    RTCGeometry g = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_QUAD);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4 * n));
+    auto* q = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), n));
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const auto& range) {
+        for (size_t i = range.begin(); i != range.end(); ++i) {
+            const StrokeCaster& c = casters[i];
+            const glm::vec3 center(c.center - impl_->anchor);
+            set->cards[i] = {center, c.axis_s, c.axis_t, c.half_w, c.half_l, c.noise};
+            const glm::vec3 a = c.axis_s * c.half_w, b = c.axis_t * c.half_l;
+            const glm::vec3 corners[4] = {center - a - b, center + a - b, center + a + b,
+                                          center - a + b};
+            for (int k = 0; k < 4; ++k) {
+                v[12 * i + 3 * k] = corners[k].x;
+                v[12 * i + 3 * k + 1] = corners[k].y;
+                v[12 * i + 3 * k + 2] = corners[k].z;
+                q[4 * i + k] = static_cast<unsigned>(4 * i + k);
+            }
+        }
+    });
+    rtcSetGeometryUserData(g, set.get());
+    rtcSetGeometryOccludedFilterFunction(g, caster_filter);
+    rtcCommitGeometry(g);
+    uint32_t id = rtcAttachGeometry(impl_->casters, g);
+    rtcReleaseGeometry(g);
+    impl_->caster_total += static_cast<uint32_t>(n);
+    impl_->sets.push_back(std::move(set));
+    return id;
+}
+
+void RayScene::commit() {
+    FlushDenormals ftz;
+    rtcCommitScene(impl_->scene);
+    if (impl_->casters) rtcCommitScene(impl_->casters);
+}
+
+uint32_t RayScene::mesh_count() const { return impl_->meshes; }
+uint32_t RayScene::caster_count() const { return impl_->caster_total; }
+
+RayHit RayScene::intersect(const glm::dvec3& origin, const glm::vec3& dir, float tmax,
+                           const glm::vec3* n) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh;
+    fill_ray(rh.ray, origin, impl_->anchor, dir, tmax, n);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(impl_->scene, &ctx, &rh);
+    RayHit out;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return out;
+    out.hit = true;
+    out.t = rh.ray.tfar;
+    // On an instance, Embree names the instance in instID and reports the normal in the
+    // instanced mesh's own space.
+    const bool instanced = rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID;
+    out.geometry = instanced ? rh.hit.instID[0] : rh.hit.geomID;
+    out.primitive = rh.hit.primID;
+    glm::vec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+    if (instanced) ng = impl_->normal_to_world[out.geometry] * ng;
+    float len = glm::length(ng);
+    out.normal = len > 0 && std::isfinite(len) ? ng / len : glm::vec3(0, 1, 0);
+    return out;
+}
+
+bool RayScene::occluded(const glm::dvec3& origin, const glm::vec3& dir, float tmax,
+                        const glm::vec3* n) const {
+    return transmittance(origin, dir, ShadowMode::kThreshold, tmax, n) < 0.5f;
+}
+
+float RayScene::transmittance(const glm::dvec3& origin, const glm::vec3& dir, ShadowMode mode,
+                              float tmax, const glm::vec3* n) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay r;
+    fill_ray(r, origin, impl_->anchor, dir, tmax, n);
+    rtcOccluded1(impl_->scene, &ctx, &r);
+    if (r.tfar < 0) return 0.0f;  // Embree sets tfar to -inf on a hit
+    if (!impl_->casters || impl_->caster_total == 0) return 1.0f;
+    ShadowContext sc;
+    rtcInitIntersectContext(&sc.ctx);
+    sc.mode = mode;
+    fill_ray(r, origin, impl_->anchor, dir, tmax, n);
+    rtcOccluded1(impl_->casters, &sc.ctx, &r);
+    if (r.tfar < 0 || sc.blocked) return 0.0f;
+    return pmath::exp2(-static_cast<float>(sc.depth) / 65536.0f);
+}
+
+}  // namespace pleinair

@@ -1,0 +1,320 @@
+// build_shot: trees and landscape, the material table, the Embree scenes and the sun's stroke
+// casters, and (for animations under a still sun) each particle's light.
+#include "pipeline/shot/shot.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <limits>
+
+#include "pipeline/frame/graftal_stage.h"
+#include "shading/pigment.h"
+#include "shading/portable_math.h"
+
+namespace pleinair {
+
+namespace {
+
+glm::dvec3 rotate_y(const glm::dvec3& v, double c, double s) {
+    return {c * v.x + s * v.z, v.y, -s * v.x + c * v.z};
+}
+
+ShotPlan plan_shot(const SceneDesc& scene, const ShotOptions& options) {
+    ShotPlan plan;
+    plan.bark = scene.build.bark_coverage > 0;
+    const bool meshes = scene.terrain.present || !scene.rocks.empty();
+    plan.shadows = scene.sun_casts_shadows && (meshes || !scene.trees.empty());
+    plan.sun_moves = plan.shadows && !scene.sun_track.empty();
+    plan.underpaint = meshes;
+    plan.sun_light = plan.shadows && !plan.sun_moves && options.cache_sun_light &&
+                     scene.render.shadow_samples == ShadowSamples::kParticle;
+    return plan;
+}
+
+std::unique_ptr<RayScene> build_view_scene(const Shot& shot, std::vector<ViewSurface>& surfaces) {
+    const BuiltLandscape& land = *shot.land;
+    const SceneDesc& scene = shot.scene;
+    auto rays = std::make_unique<RayScene>(shot.anchor, shot.limbs.get());
+    if (land.has_terrain) rays->add_mesh(land.terrain_mesh), surfaces.push_back({true, {}});
+    if (land.has_water)
+        rays->add_mesh(land.water_mesh),
+            surfaces.push_back({false, shot.materials.surface(scene.water.material)});
+    for (size_t i = 0; i < land.rocks.size(); ++i)
+        rays->add_mesh(land.rocks[i]),
+            surfaces.push_back({false, shot.materials.surface(scene.rocks[i].material)});
+    const std::vector<BuiltTree>& trees = *shot.trees;
+    for (size_t i = 0; i < trees.size(); ++i)
+        rays->add_instance(static_cast<uint32_t>(i), shot.placements[i].linear(),
+                           shot.placements[i].position),
+            surfaces.push_back({false, shot.materials.bark(trees[i].family)});
+    rays->commit();
+    return rays;
+}
+
+// Each particle's light from the still sun, item by item in parallel.
+std::vector<std::vector<float>> trace_sun_light(const Shot& shot) {
+    std::vector<std::vector<float>> light(shot.item_count());
+    const glm::vec3 sun(shot.scene.sun_direction);
+    const ShadowMode mode = shot.scene.render.shadows;
+    tbb::parallel_for(size_t{0}, light.size(), [&](size_t i) {
+        FlushDenormals ftz;
+        for_each_particle(shot, i, [&](SpriteKind, size_t, const RayOrigin& o) {
+            light[i].push_back(sun_light_at(*shot.sun_rays, o, sun, mode));
+        });
+    });
+    return light;
+}
+
+}  // namespace
+
+TreePlacement placement(const BuiltTree& b) {
+    return {pmath::cos(b.rotation * M_PI / 180.0), pmath::sin(b.rotation * M_PI / 180.0), b.scale,
+            b.position};
+}
+
+glm::dvec3 TreePlacement::place(const glm::vec3& p) const {
+    return position + rotate_y(glm::dvec3(p) * scale, c, s);
+}
+
+glm::vec3 TreePlacement::turn(const glm::vec3& v) const {
+    return glm::vec3(rotate_y(glm::dvec3(v), c, s));
+}
+
+glm::dmat3 TreePlacement::linear() const {
+    return glm::dmat3(glm::dvec3(c, 0, -s) * scale, glm::dvec3(0, scale, 0),
+                      glm::dvec3(s, 0, c) * scale);
+}
+
+std::vector<StrokeCaster> leaf_casters(const SceneDesc& scene, const BuiltTree& b,
+                                       const glm::vec3& sun) {
+    std::vector<StrokeCaster> out(b.tree.leaves.size());
+    leaf_casters(scene, b, sun, out.data());
+    return out;
+}
+
+void leaf_casters(const SceneDesc& scene, const BuiltTree& b, const glm::vec3& sun,
+                  StrokeCaster* out) {
+    const TreePlacement pl = placement(b);
+    const StrokeShaderParams& p = scene.families[b.family].leaf_shader;
+    const LeafParticles& L = b.tree.leaves;
+    const double w = tree_stroke_width(scene.families[b.family], p, b.scale);
+    // A frame perpendicular to the sun; each card turned by its stroke's angle jitter.
+    const glm::vec3 ref = std::abs(sun.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+    const glm::vec3 a0 = glm::normalize(glm::cross(ref, sun)), b0 = glm::cross(sun, a0);
+    for (size_t j = 0; j < L.size(); ++j) {
+        StrokeCaster& c = out[j];
+        c.center = pl.place(L.position[j]);
+        const float jitter = stroke_size_jitter(p, L.label[j]);
+        const double ang = stroke_angle_jitter(p, L.label[j]);
+        const float ca = static_cast<float>(pmath::cos(ang)),
+                    sa = static_cast<float>(pmath::sin(ang));
+        c.axis_s = ca * a0 + sa * b0;
+        c.axis_t = -sa * a0 + ca * b0;
+        c.half_w = static_cast<float>(0.5 * w * jitter);
+        c.half_l = c.half_w * p.stroke_aspect;
+        c.noise = noise_of(stroke_constants(p, glm::dot(pl.turn(L.normal[j]), sun),
+                                            L.center_distance[j], L.branch_distance[j], L.label[j],
+                                            L.tree_id[j], 1.0f, 0.0f, 0.0f, false, false));
+    }
+}
+
+double tree_stroke_width(const Family& family, const StrokeShaderParams& shader, double scale) {
+    return shader.sprite_size * family.params.unit * scale;
+}
+
+BarkParticles family_bark(const Family& family, const Tree& tree, float coverage, uint64_t seed) {
+    BarkOptions bo;
+    bo.stroke_width = static_cast<float>(tree_stroke_width(family, family.bark_shader, 1.0));
+    bo.stroke_length = bo.stroke_width * family.bark_shader.stroke_aspect;
+    bo.coverage = coverage;
+    return emit_bark(tree, bo, seed);
+}
+
+std::vector<BuiltTree> build_trees(const SceneDesc& scene, bool bark) {
+    std::vector<BuiltTree> out(scene.trees.size());
+    tbb::parallel_for(size_t{0}, scene.trees.size(), [&](size_t i) {
+        const PlacedTree& t = scene.trees[i];
+        const Family& f = scene.families[t.family];
+        TreeOptions o;
+        o.tree_id = static_cast<uint32_t>(i);
+        o.lod = false;
+        BuiltTree& b = out[i];
+        b.tree = generate_tree(f.params, t.seed, o);
+        b.family = t.family;
+        b.position = t.position;
+        // Catmull-Clark rounds the trunk's base into a dome: plant the tree deep enough that
+        // the ground meets the trunk at its full width.
+        b.position.y -= b.tree.planting_depth * t.scale;
+        b.rotation = t.rotation;
+        b.scale = t.scale;
+        if (bark) b.bark = family_bark(f, b.tree, scene.build.bark_coverage, t.seed);
+    });
+    return out;
+}
+
+float sun_light_at(const RayScene& sun_rays, const RayOrigin& o, const glm::vec3& sun,
+                   ShadowMode mode) {
+    return sun_rays.transmittance(o.lifted(), sun, mode, std::numeric_limits<float>::infinity(),
+                                  o.surface_normal());
+}
+
+std::unique_ptr<RayScene> build_sun_scene(const Shot& shot, const glm::vec3& sun) {
+    const SceneDesc& scene = shot.scene;
+    const BuiltLandscape& land = *shot.land;
+    const std::vector<BuiltTree>& trees = *shot.trees;
+    auto rays = std::make_unique<RayScene>(shot.anchor, shot.limbs.get());
+    // Surfaces that grow grass and rock strokes cast shadows though the camera never sees
+    // them (IV.7); water casts none.
+    if (land.has_terrain) rays->add_mesh(land.terrain_mesh);
+    for (const auto& r : land.rocks) rays->add_mesh(r);
+    for (size_t i = 0; i < trees.size(); ++i)
+        rays->add_instance(static_cast<uint32_t>(i), shot.placements[i].linear(),
+                           shot.placements[i].position);
+    // Leaf strokes as cards facing the sun, one caster set per family's leaf shader, each in
+    // tree order whatever the threads did.
+    const size_t nf = scene.families.size();
+    std::vector<std::vector<StrokeCaster>> casters(nf);
+    std::vector<size_t> offset(trees.size());
+    for (size_t i = 0; i < trees.size(); ++i) {
+        offset[i] = casters[trees[i].family].size();
+        casters[trees[i].family].resize(offset[i] + trees[i].tree.leaves.size());
+    }
+    tbb::parallel_for(size_t{0}, trees.size(), [&](size_t i) {
+        leaf_casters(scene, trees[i], sun, casters[trees[i].family].data() + offset[i]);
+    });
+    for (uint32_t f = 0; f < nf; ++f)
+        if (!casters[f].empty())
+            rays->add_casters(casters[f], scene.families[f].leaf_shader,
+                              shot.materials[shot.materials.leaf(f)].edge);
+    rays->commit();
+    return rays;
+}
+
+Shot build_shot(SceneDesc scene, const ShotOptions& options) {
+    PassTimer timer;
+    const ShotPlan plan = plan_shot(scene, options);
+    auto trees = std::make_shared<const std::vector<BuiltTree>>(build_trees(scene, plan.bark));
+    auto land = std::make_shared<const BuiltLandscape>(build_landscape(scene));
+    size_t leaves = 0, bark = 0;
+    for (const auto& t : *trees) leaves += t.tree.leaves.size(), bark += t.bark.size();
+    PassReport generate{"generate", true,
+                        "trees grown from their presets, surfaces turned into strokes", timer.ms(),
+                        std::to_string(trees->size()) + " trees, " + std::to_string(leaves) +
+                            " leaves, " + std::to_string(bark) + " bark strokes, " +
+                            std::to_string(land->stroke_count()) + " surface strokes"};
+    Shot shot = build_shot(std::move(scene), std::move(trees), std::move(land), options);
+    shot.passes.insert(shot.passes.begin(), generate);
+    return shot;
+}
+
+Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> trees,
+                std::shared_ptr<const BuiltLandscape> land, const ShotOptions& options) {
+    Shot shot;
+    shot.plan = plan_shot(scene, options);
+    shot.scene = std::move(scene);
+    shot.trees = std::move(trees);
+    shot.land = std::move(land);
+    shot.materials = MaterialTable(shot.scene);
+    // Near where the camera is: the still camera, or the track's first key.
+    shot.anchor = shot.scene.camera_track.keys.empty() ? shot.scene.camera.eye
+                                                       : shot.scene.camera_track.keys[0].position;
+    for (const BuiltTree& b : *shot.trees) shot.placements.push_back(placement(b));
+    // Surface strokes' rays start above the deepest strokes, so none is hidden or shadowed by
+    // the very ground it was emitted from.
+    double max_displacement = shot.scene.terrain.strokes.displacement_height;
+    max_displacement = std::max(max_displacement, shot.scene.water.strokes.displacement_height);
+    for (const auto& r : shot.scene.rocks)
+        max_displacement = std::max(max_displacement, r.strokes.displacement_height);
+    shot.surface_lift = 2.0f * static_cast<float>(max_displacement) + 0.01f;
+    if (std::any_of(shot.scene.families.begin(), shot.scene.families.end(),
+                    [](const Family& f) { return f.graftal != nullptr; }) ||
+        std::any_of(shot.scene.materials.begin(), shot.scene.materials.end(),
+                    [](const Material& m) { return m.graftal != nullptr; })) {
+        PassTimer timer;
+        shot.graftals = build_graftals(shot);
+        size_t tufts = 0, graftals = 0;
+        for (const ShotGraftals& g : shot.graftals)
+            tufts += g.sites.size(), graftals += g.instances.size();
+        shot.passes.push_back(
+            {"graftals", true, "tufts placed on the graftal-styled crowns and surfaces", timer.ms(),
+             std::to_string(tufts) + " tufts of " + std::to_string(graftals) + " graftals in " +
+                 std::to_string(shot.graftals.size()) + " groups"});
+    }
+    if (std::any_of(shot.scene.families.begin(), shot.scene.families.end(),
+                    [](const Family& f) { return f.imposters != nullptr; }) ||
+        std::any_of(shot.scene.materials.begin(), shot.scene.materials.end(),
+                    [](const Material& m) { return m.imposters != nullptr; })) {
+        PassTimer timer;
+        shot.imposters = build_imposters(shot);
+        size_t edges = 0;
+        for (const ImposterObject& o : shot.imposters) edges += o.edges.size();
+        shot.passes.push_back({"imposters", true,
+                               "edges, control rows, colours and directions of the meshes that "
+                               "carry graftal imposters",
+                               timer.ms(),
+                               std::to_string(shot.imposters.size()) + " meshes, " +
+                                   std::to_string(edges) + " edges"});
+    }
+
+    if (shot.scene.render.pigment_mixing) {
+        // Process-wide and built once; here, so frames do not pay for it.
+        PassTimer timer;
+        PigmentTable::shared();
+        shot.passes.push_back({"pigment table", true,
+                               "concentrations of four Kubelka-Munk pigments over colour, and "
+                               "their mixtures (once per process)",
+                               timer.ms(), ""});
+    }
+    if (shot.scene.sky.present && !shot.scene.background.canvas) {
+        PassTimer timer;
+        shot.sky = build_sky_strokes(shot.scene);
+        shot.passes.push_back({"sky", true, "the painted sky's strokes over the sky's directions",
+                               timer.ms(), std::to_string(shot.sky.size()) + " strokes"});
+    }
+
+    const ShotPlan& plan = shot.plan;
+    const bool still_sun = plan.shadows && !plan.sun_moves;
+    if (plan.underpaint || plan.shadows) {
+        PassTimer timer;
+        shot.limbs = std::make_unique<RayMeshes>();
+        for (const BuiltTree& b : *shot.trees) shot.limbs->add(b.tree.render);
+        shot.limbs->commit();
+        const glm::vec3 sun(shot.scene.sun_direction);
+        // The two scenes only read what they share (the device, the committed limbs): built
+        // side by side (Embree's builds are partly serial).
+        auto view = [&] { shot.view_rays = build_view_scene(shot, shot.view_surfaces); };
+        auto sun_scene = [&] { shot.sun_rays = build_sun_scene(shot, sun); };
+        if (plan.underpaint && still_sun)
+            tbb::parallel_invoke(view, sun_scene);
+        else if (plan.underpaint)
+            view();
+        else if (still_sun)
+            sun_scene();
+        shot.passes.push_back(
+            {"ray scenes", true, "Embree scenes the plan asks for", timer.ms(),
+             std::to_string(shot.limbs->size()) + " trees' limbs built once and placed in each; " +
+                 (shot.view_rays
+                      ? std::to_string(shot.view_rays->mesh_count()) + " meshes for the camera"
+                      : std::string("no camera scene")) +
+                 (shot.sun_rays ? ", " + std::to_string(shot.sun_rays->mesh_count()) +
+                                      " meshes + " + std::to_string(shot.sun_rays->caster_count()) +
+                                      " stroke casters for the sun"
+                  : plan.sun_moves ? ", the sun's scene per frame (the sun moves)"
+                                   : std::string(", no shadow scene"))});
+    }
+    if (plan.sun_light) {
+        PassTimer timer;
+        shot.sun_light = trace_sun_light(shot);
+        size_t rays = 0;
+        for (const auto& l : shot.sun_light) rays += l.size();
+        shot.passes.push_back({"sun light", true,
+                               "the still sun's light at every particle, once for every frame",
+                               timer.ms(), std::to_string(rays) + " shadow rays"});
+    }
+    return shot;
+}
+
+}  // namespace pleinair

@@ -1,0 +1,161 @@
+// A shot: everything that does not depend on the frame time, built once per process (trees
+// grown and placed, surface strokes, the material table, Embree scenes and the sun's stroke
+// casters, and the light each particle gets from a still sun); frames are painted from it.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "generators/bark.h"
+#include "generators/tree.h"
+#include "pipeline/shot/graftal_instances.h"
+#include "pipeline/frame/imposter_stage.h"
+#include "pipeline/shot/landscape.h"
+#include "pipeline/shot/materials.h"
+#include "pipeline/shot/rays.h"
+#include "pipeline/shot/pass_report.h"
+#include "pipeline/input/scene.h"
+#include "pipeline/frame/sky_sprites.h"
+
+namespace pleinair {
+
+struct BuiltTree {
+    Tree tree;  // tree-local geometry; the transform below places it
+    BarkParticles bark;
+    uint32_t family = 0;
+    glm::dvec3 position{0.0};
+    double rotation = 0;  // about +y, degrees
+    double scale = 1;
+};
+
+// A tree's placement in the world: rotation about +y and scale, then its position (in double).
+struct TreePlacement {
+    double c = 1, s = 0, scale = 1;
+    glm::dvec3 position{0.0};
+    glm::dvec3 place(const glm::vec3& tree_local) const;
+    glm::vec3 turn(const glm::vec3& direction) const;
+    glm::dmat3 linear() const;  // place(p) = position + linear() * p
+};
+TreePlacement placement(const BuiltTree& tree);
+
+// A stroke's world width on a tree of `family`: the shader's sprite_size in the tree's units,
+// times the tree's scale. Leaves, bark strokes and the leaves' shadow casters agree through it.
+double tree_stroke_width(const Family& family, const StrokeShaderParams& shader, double scale);
+
+// The bark strokes of a tree of `family` (its bark shader's size and aspect) at a coverage.
+BarkParticles family_bark(const Family& family, const Tree& tree, float coverage, uint64_t seed);
+
+// Generates every tree of the scene (in parallel; the result does not depend on threads), with
+// bark strokes when `bark`.
+std::vector<BuiltTree> build_trees(const SceneDesc& scene, bool bark = true);
+
+// The tree's leaf strokes as shadow casters: cards facing the sun, sized and turned like the
+// strokes, with the same noise (IV.4.2).
+std::vector<StrokeCaster> leaf_casters(const SceneDesc& scene, const BuiltTree& tree,
+                                       const glm::vec3& sun);
+// The same, written to out[0 .. tree.tree.leaves.size() - 1].
+void leaf_casters(const SceneDesc& scene, const BuiltTree& tree, const glm::vec3& sun,
+                  StrokeCaster* out);
+
+struct ShotOptions {
+    // Each particle's light from a still sun, traced once for every frame (animations); off,
+    // frames trace it for the particles they show (a still traces fewer rays that way). The
+    // light is the same either way.
+    bool cache_sun_light = false;
+};
+
+// What the shot holds, decided from the scene alone.
+struct ShotPlan {
+    bool bark = false;        // bark strokes grown and painted (render/bark_coverage > 0)
+    bool shadows = false;     // the sun casts shadows and something is there to cast them
+    bool sun_moves = false;   // a keyed sun: its scene and the light are traced per frame
+    bool underpaint = false;  // a visible mesh (terrain, water, rocks): the camera's ray scene
+    bool sun_light = false;   // the light of every particle traced once, in the shot
+};
+
+// What a camera-scene geometry is painted with underneath: a material, or the terrain's (which
+// varies over it).
+struct ViewSurface {
+    bool terrain = false;
+    MaterialId material;
+};
+
+// Where a particle's rays start: its world position, lifted by `lift` along `normal` when it
+// lies on a surface (bark, ground), so no ray hits the surface it was emitted from.
+struct RayOrigin {
+    glm::dvec3 world{0.0};
+    glm::vec3 normal{0.0f};
+    bool on_surface = false;
+    float lift = 0;
+    glm::dvec3 lifted() const {
+        return on_surface ? world + glm::dvec3(normal) * double(lift) : world;
+    }
+    const glm::vec3* surface_normal() const { return on_surface ? &normal : nullptr; }
+};
+
+// Immutable once built; nothing in it points into itself, so it may be moved (animate holds it
+// on the heap). Not copied: its Embree scenes are owned once.
+struct Shot {
+    SceneDesc scene;
+    ShotPlan plan;
+    std::shared_ptr<const std::vector<BuiltTree>> trees;
+    std::shared_ptr<const BuiltLandscape> land;
+    std::vector<TreePlacement> placements;  // one per tree
+    MaterialTable materials;
+    float surface_lift = 0;  // surface strokes' rays start above the deepest strokes
+
+    // Embree: each tree's limbs built once, placed by instances in the camera's scene and the
+    // sun's; the anchor (the still camera's eye) keeps far landscapes precise in float.
+    glm::dvec3 anchor{0.0};
+    std::unique_ptr<RayMeshes> limbs;
+    std::unique_ptr<RayScene> view_rays;  // plan.underpaint
+    std::vector<ViewSurface> view_surfaces;
+    std::unique_ptr<RayScene> sun_rays;  // plan.shadows and a still sun
+    // plan.sun_light: per item (trees, then surface chunks), per particle in the order
+    // for_each_particle visits them, the light reaching it.
+    std::vector<std::vector<float>> sun_light;
+
+    // The graftal-styled families' crowns and materials' surfaces (graftal_stage.h); their
+    // leaf and surface strokes are not painted. Graftal sprites' items count on from
+    // item_count().
+    std::vector<ShotGraftals> graftals;
+    // The meshes that carry graftal imposters on their silhouettes (imposter_stage.h); their
+    // sprites' items count on after the graftals'.
+    std::vector<ImposterObject> imposters;
+
+    // The painted sky's strokes (sky_strokes.h); empty without a /sky.
+    SkyStrokes sky;
+
+    std::vector<PassReport> passes;  // what the build did, for --explain
+
+    Shot() = default;
+    Shot(Shot&&) = default;
+    Shot& operator=(Shot&&) = default;
+    Shot(const Shot&) = delete;
+
+    size_t item_count() const { return trees->size() + land->chunks.size(); }
+};
+
+// Builds the shot of a scene: grows the trees and the landscape, then everything else.
+Shot build_shot(SceneDesc scene, const ShotOptions& options = {});
+// The same from trees and a landscape already built from this scene (shared, not copied).
+Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> trees,
+                std::shared_ptr<const BuiltLandscape> land, const ShotOptions& options = {});
+
+// The sun's scene for a sun direction (unit, towards the sun): surfaces, limbs and leaf strokes
+// as cards facing it. Built by the shot for a still sun, per frame for a keyed one.
+std::unique_ptr<RayScene> build_sun_scene(const Shot& shot, const glm::vec3& sun);
+
+// The light reaching a particle from the sun through the sun's scene.
+float sun_light_at(const RayScene& sun_rays, const RayOrigin& origin, const glm::vec3& sun,
+                   ShadowMode mode);
+
+// Visits every particle of item i (tree i, then surface chunk i - trees): for a tree its bark
+// strokes (when the plan paints bark) then its leaves; fn(kind, index, origin).
+template <class Fn>
+void for_each_particle(const Shot& shot, size_t item, Fn&& fn);
+
+}  // namespace pleinair
+
+#include "pipeline/shot/shot_particles.h"
