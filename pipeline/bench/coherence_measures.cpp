@@ -8,11 +8,11 @@
 #include <functional>
 #include <unordered_map>
 
-#include "pipeline/input/camera_track.h"
 #include "pipeline/frame/graftal_stage.h"
 #include "pipeline/frame/imposter_stage.h"
 #include "pipeline/frame/lod.h"
 #include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/camera_track.h"
 #include "shading/color.h"
 #include "shading/portable_math.h"
 
@@ -219,7 +219,8 @@ double shape_overlap(const Traced& a, const Traced& b, int width, int height) {
 
 CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& frames,
                                   const FrameSettings& base,
-                                  const std::function<void(int)>& progress) {
+                                  const std::function<void(int)>& progress,
+                                  const std::function<void(int, const Frame&)>& painted) {
     CoherenceReport rep;
     const SceneDesc& scene = shot.scene;
     if (frames.empty()) return rep;
@@ -251,6 +252,7 @@ CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& fram
         const FrameView view = view_at(scene, frame_time(frames[n], scene.fps));
         boiling.noise_reseed = static_cast<uint32_t>(frames[n]) + 1;
         Traced c_on = paint_traced(shot, view, on), c_frozen = paint_traced(shot, view, frozen);
+        if (painted) painted(frames[n], c_on.frame);
         Traced c_off = paint_traced(shot, view, off), c_boil = paint_traced(shot, view, boiling);
         Traced c_dry;
         if (rep.water) c_dry = paint_traced(shot, view, dry);

@@ -7,6 +7,7 @@
 #include <functional>
 #include <vector>
 
+#include "pipeline/frame/frame_image.h"
 #include "pipeline/frame/frame_plan.h"
 
 namespace pleinair {
@@ -72,10 +73,12 @@ struct CoherenceReport {
 
 // Paints `frames` of the shot four times (level of detail as planned, frozen at the first
 // frame, off, and with boiling noise), five when still water mirrors (and without its mirror),
-// and measures them. `progress` (optional) is called after
-// each frame with the frames done.
+// and measures them. `progress` (optional) is called after each frame with the frames done;
+// `painted` (optional) with each frame number and its frame as planned, the frame `render
+// --frame` and `animate` paint (the trace it keeps changes no pixel).
 CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& frames,
                                   const FrameSettings& settings,
-                                  const std::function<void(int)>& progress = {});
+                                  const std::function<void(int)>& progress = {},
+                                  const std::function<void(int, const Frame&)>& painted = {});
 
 }  // namespace pleinair

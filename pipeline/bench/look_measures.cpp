@@ -7,8 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include "pipeline/frame/frame_view.h"
 #include "pipeline/input/camera.h"
-#include "pipeline/frame/paint_frame.h"
 #include "pipeline/shot/shot.h"
 #include "shading/color.h"
 #include "shading/portable_math.h"

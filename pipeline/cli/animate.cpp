@@ -16,12 +16,12 @@
 #include <stdexcept>
 
 #include "pipeline/cli/commands.h"
+#include "pipeline/frame/paint_frame.h"
 #include "pipeline/input/error.h"
 #include "pipeline/input/frame_range.h"
-#include "pipeline/output/image_io.h"
-#include "pipeline/frame/paint_frame.h"
-#include "pipeline/output/partial_files.h"
 #include "pipeline/input/presets.h"
+#include "pipeline/output/image_io.h"
+#include "pipeline/output/partial_files.h"
 
 extern char** environ;
 
@@ -85,6 +85,13 @@ std::vector<int> frames_to_paint(const SceneDesc& scene, const std::string& text
                          "frames " + text + " lie outside the track, which has frames " +
                              std::to_string(all.first) + "-" + std::to_string(all.last));
     return r.frames();
+}
+
+void halve_for_preview(SceneDesc& scene, const std::string& file) {
+    scene.camera_params.width = std::max(1, scene.camera_params.width / 2);
+    scene.camera_params.height = std::max(1, scene.camera_params.height / 2);
+    if (std::string why = make_camera(scene.camera_params, scene.camera); !why.empty())
+        throw InputError(file, "/camera", why);
 }
 
 namespace {
@@ -272,12 +279,7 @@ int run_animate(const AnimateCommand& cmd) {
     check_views(scene, frames, file.string());
     if (!cmd.video.empty() && frames.size() > 1 && frames[1] - frames[0] != 1)
         throw InputError("--video", "", "a video needs every frame of its range (no xSTEP)");
-    if (cmd.preview) {
-        scene.camera_params.width = std::max(1, scene.camera_params.width / 2);
-        scene.camera_params.height = std::max(1, scene.camera_params.height / 2);
-        if (std::string why = make_camera(scene.camera_params, scene.camera); !why.empty())
-            throw InputError(file.string(), "/camera", why);
-    }
+    if (cmd.preview) halve_for_preview(scene, file.string());
     // One frame painted while the one before is written.
     check_job_memory(scene, cmd.aovs, pattern.path(1), 2, file.string());
     const fs::path dir = fs::path(pattern.path(0)).parent_path();

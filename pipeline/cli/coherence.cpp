@@ -1,14 +1,17 @@
 // `pleinair bench coherence SHOT`: the coherence table of an animated shot (coherence_measures.h).
-#include "pipeline/bench/coherence_measures.h"
-
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
+#include <optional>
 
+#include "pipeline/bench/coherence_measures.h"
 #include "pipeline/cli/commands.h"
-#include "pipeline/input/error.h"
 #include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/error.h"
+#include "pipeline/input/frame_range.h"
 #include "pipeline/input/presets.h"
+#include "pipeline/output/image_io.h"
 
 namespace pleinair {
 
@@ -19,20 +22,30 @@ int run_bench_coherence(const BenchCommand& cmd) {
         throw InputError(file, "/camera/track", "coherence is measured on an animated shot");
     const std::vector<int> frames = frames_to_paint(scene, cmd.frames);
     check_views(scene, frames, file);
-    if (cmd.preview) {
-        scene.camera_params.width = std::max(1, scene.camera_params.width / 2);
-        scene.camera_params.height = std::max(1, scene.camera_params.height / 2);
-        if (std::string why = make_camera(scene.camera_params, scene.camera); !why.empty())
-            throw InputError(file, "/camera", why);
+    if (cmd.preview) halve_for_preview(scene, file);
+    std::optional<FramePattern> save;
+    if (!cmd.save.empty()) {
+        save = parse_frame_pattern(cmd.save, "--save");
+        if (!is_image_path(save->path(1)))
+            throw InputError("--save", "",
+                             "expected frame images ending in .png, .tif, .tiff or .exr, got \"" +
+                                 cmd.save + "\"");
+        const std::filesystem::path dir = std::filesystem::path(save->path(0)).parent_path();
+        if (!dir.empty()) std::filesystem::create_directories(dir);
     }
     ShotOptions options;
     options.cache_sun_light = true;
     PassTimer timer;
     const Shot shot = build_shot(scene, options);
     const bool tty = isatty(fileno(stderr));
-    const CoherenceReport r =
-        measure_coherence(shot, frames, scene_frame_settings(shot.scene), [&](int done) {
+    const CoherenceReport r = measure_coherence(
+        shot, frames, scene_frame_settings(shot.scene),
+        [&](int done) {
             if (tty) std::fprintf(stderr, "\r%d/%zu frames", done, frames.size());
+        },
+        [&](int frame, const Frame& f) {
+            // The frame as planned, the one animate paints: what the figures above measured.
+            if (save) write_frame(save->path(frame), f);
         });
     if (tty) std::fprintf(stderr, "\n");
     const int w = scene.camera_params.width, h = scene.camera_params.height;

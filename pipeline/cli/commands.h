@@ -43,6 +43,7 @@ struct RenderCommand {
     std::vector<std::string> set;  // "POINTER=VALUE" overrides of the scene
     std::optional<double> time;    // seconds into an animated scene
     std::optional<int> frame;      // or a frame of it (from 1, at the scene's fps)
+    bool preview = false;          // half the resolution, as animate --preview
 };
 
 struct AnimateCommand {
@@ -64,9 +65,11 @@ struct BenchCommand {
     std::string scene;
     int repeat = 3;  // renders per setting; the median time is reported
     std::vector<std::string> set;
-    std::string frames;      // coherence: A-B[xSTEP]; empty: the whole track
-    bool preview = false;    // coherence: half the resolution
-    bool per_frame = false;  // coherence: a row per frame too
+    std::string frames;        // coherence: A-B[xSTEP]; empty: the whole track
+    bool preview = false;      // coherence: half the resolution
+    bool per_frame = false;    // coherence: a row per frame too
+    std::optional<int> frame;  // look: the frame of an animated scene (default: its first)
+    std::string save;          // coherence: a frame pattern; look: an image; empty: none
 };
 
 struct PresetsCommand {
@@ -84,9 +87,17 @@ int run_bench_coherence(const BenchCommand& cmd);
 int run_bench_look(const BenchCommand& cmd);
 
 struct SceneDesc;
+// The time of the frame a command paints of `scene`: `time` or `frame` (not both; InputError
+// past the track, or on a still), else an animated scene's first frame, else 0. One rule for
+// render and bench look.
+double frame_time_of(std::optional<double> time, std::optional<int> frame, const SceneDesc& scene,
+                     const std::string& file);
 // The frames of an animated scene that --frames TEXT names (all of its track's when empty);
 // InputError for a bad range or one outside the track.
 std::vector<int> frames_to_paint(const SceneDesc& scene, const std::string& text);
+// --preview: the scene's camera at half its width and height (at least 1), as animate, render
+// and bench coherence halve it alike.
+void halve_for_preview(SceneDesc& scene, const std::string& file);
 // InputError naming the first frame whose camera degenerates.
 void check_views(const SceneDesc& scene, const std::vector<int>& frames, const std::string& file);
 // InputError when `frames_at_once` frames of the scene's camera, written to `out`, are

@@ -1,11 +1,13 @@
-// `pleinair bench look SCENE`: the look's measures of a still (look_measures.h), one table row.
-#include "pipeline/bench/look_measures.h"
-
+// `pleinair bench look SCENE`: the look's measures of a still or of a shot's frame
+// (look_measures.h), one table row; --save writes the frame it measured.
 #include <cstdio>
 
+#include "pipeline/bench/look_measures.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/error.h"
 #include "pipeline/input/presets.h"
+#include "pipeline/output/image_io.h"
 #include "pipeline/shot/shot.h"
 
 namespace pleinair {
@@ -13,11 +15,23 @@ namespace pleinair {
 int run_bench_look(const BenchCommand& cmd) {
     const std::string file = resolve_preset("scenes", cmd.scene, "SCENE").string();
     const SceneDesc scene = load_scene(file, cmd.set);
+    // The frame `render` paints with the same --frame: one rule for the time and the view.
+    const double t = frame_time_of(std::nullopt, cmd.frame, scene, file);
+    if (!cmd.save.empty() && !is_image_path(cmd.save))
+        throw InputError(
+            "--save", "",
+            "expected an image path ending in .png, .tif, .tiff or .exr, got \"" + cmd.save + "\"");
+    FrameView view;
+    try {
+        view = view_at(scene, t);
+    } catch (const std::runtime_error& e) {
+        throw InputError(file, "/camera/track", e.what());
+    }
     const Shot shot = build_shot(scene);
-    const FrameView view = still_view(shot.scene);
     PassTimer timer;
     const Frame f = paint_frame(shot, view, scene_frame_settings(shot.scene, true));
     const double ms = timer.ms();
+    if (!cmd.save.empty()) write_frame(cmd.save, f);
     const LookRegions r = look_regions(shot, view, f);
     const std::vector<float> l = frame_lightness(f);
     uint64_t sky_px = 0, tree_px = 0, pairs = 0;

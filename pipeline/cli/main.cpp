@@ -16,9 +16,9 @@
 #include "pipeline/cli/commands.h"
 #include "pipeline/input/error.h"
 #include "pipeline/input/limits.h"
+#include "pipeline/input/scene.h"
 #include "pipeline/output/partial_files.h"
 #include "pipeline/shot/rays.h"
-#include "pipeline/input/scene.h"
 
 namespace {
 
@@ -137,6 +137,7 @@ Command add_render(CLI::App& app) {
     r->add_flag("--explain", c->explain,
                 "Print the frame's plan: passes run or skipped and why, times, counts");
     r->add_flag("--aovs", c->aovs, "Add depth, object id, alpha, lightness channels (EXR)");
+    r->add_flag("--preview", c->preview, "Half resolution, as animate --preview");
     r->add_flag("--progress", c->progress,
                 "Report each stage and the paint's progress on stderr (always past 16 "
                 "megapixels)");
@@ -205,6 +206,12 @@ Command add_bench(CLI::App& app) {
     b->add_flag("--preview", c->preview, "coherence: half the resolution");
     b->add_flag("--per-frame", c->per_frame,
                 "coherence: also a row per frame (area and L* on and off, swaps)");
+    b->add_option("--frame", c->frame,
+                  "look: the frame of an animated scene to measure (default: its first, as "
+                  "render paints)");
+    b->add_option("--save", c->save,
+                  "coherence: write each frame as planned (a pattern with #, as animate's -o); "
+                  "look: write the frame measured (the pixels render and animate paint)");
 
     return {b, [=] {
                 return c->what == "coherence" ? run_bench_coherence(*c)

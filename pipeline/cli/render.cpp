@@ -6,11 +6,11 @@
 #include <mutex>
 
 #include "pipeline/cli/commands.h"
-#include "pipeline/input/error.h"
-#include "pipeline/output/image_io.h"
-#include "pipeline/input/limits.h"
 #include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/error.h"
+#include "pipeline/input/limits.h"
 #include "pipeline/input/presets.h"
+#include "pipeline/output/image_io.h"
 
 namespace pleinair {
 
@@ -32,34 +32,33 @@ std::string format_seconds(double t) {
     return buf;
 }
 
-// The time of the frame to paint: --time, --frame, or an animated scene's first frame.
-double frame_time_of(const RenderCommand& cmd, const SceneDesc& scene, const std::string& file) {
-    if (cmd.time && cmd.frame) throw InputError("--time", "", "give --time or --frame, not both");
-    if ((cmd.time || cmd.frame) && !scene.animated())
+}  // namespace
+
+double frame_time_of(std::optional<double> time, std::optional<int> frame, const SceneDesc& scene,
+                     const std::string& file) {
+    if (time && frame) throw InputError("--time", "", "give --time or --frame, not both");
+    if ((time || frame) && !scene.animated())
         throw InputError(file, "/camera/track",
                          "--time and --frame need a camera or sun track; the scene is a still");
     const FrameRange frames = animation_frames(scene);
-    if (cmd.frame) {
-        if (*cmd.frame < frames.first || *cmd.frame > frames.last)
+    if (frame) {
+        if (*frame < frames.first || *frame > frames.last)
             throw InputError("--frame", "",
-                             "frame " + std::to_string(*cmd.frame) +
+                             "frame " + std::to_string(*frame) +
                                  " lies outside the track, which has frames " +
                                  std::to_string(frames.first) + "-" + std::to_string(frames.last));
-        return frame_time(*cmd.frame, scene.fps);
+        return frame_time(*frame, scene.fps);
     }
-    if (cmd.time) {
+    if (time) {
         const TimeSpan span = animation_span(scene);
-        if (!(*cmd.time >= span.first && *cmd.time <= span.last))
+        if (!(*time >= span.first && *time <= span.last))
             throw InputError("--time", "",
                              "must lie within the track, [" + format_seconds(span.first) + ", " +
-                                 format_seconds(span.last) + "] s, got " +
-                                 format_seconds(*cmd.time));
-        return *cmd.time;
+                                 format_seconds(span.last) + "] s, got " + format_seconds(*time));
+        return *time;
     }
     return frame_time(frames.first, scene.fps);
 }
-
-}  // namespace
 
 void print_explain(const Shot& shot, const FrameReport& report, const std::string& what,
                    double shot_ms) {
@@ -111,8 +110,9 @@ int run_render(const RenderCommand& cmd) {
     PassTimer total;
     fs::path file = resolve_preset("scenes", cmd.scene, "SCENE");
     SceneDesc scene = load_scene(file, cmd.set);
+    if (cmd.preview) halve_for_preview(scene, file.string());
     check_job_memory(scene, cmd.aovs, cmd.out, 1, file.string());
-    const double t = frame_time_of(cmd, scene, file.string());
+    const double t = frame_time_of(cmd.time, cmd.frame, scene, file.string());
     FrameView view;
     try {
         view = view_at(scene, t);

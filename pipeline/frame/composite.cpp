@@ -1,4 +1,4 @@
-// The frame's background and its strokes: each tile composites its sprites front to back with
+// The frame's strokes: each tile composites its sprites front to back with
 // the stroke kernel (vector rows when the sprite's colours come from its ramp, scalar samples
 // when they vary per fragment), tiles in parallel, and stops where nothing behind would show.
 #include "pipeline/frame/composite.h"
@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <string>
 
 #include "pipeline/shot/shot.h"
 #include "shading/canvas.h"
@@ -22,31 +23,6 @@
 namespace pleinair {
 
 namespace {
-
-// The background's colour in direction dir (unit), and in `sky_share` how much of it is sky
-// (the painted sky's strokes cover that much of it). `lin`: zenith or canvas, sky horizon,
-// ground horizon, ground near, linear.
-Color background_color(const Background& b, const Color lin[4], const glm::dvec3& dir,
-                       float& sky_share) {
-    float e = static_cast<float>(dir.y);
-    Color c;
-    sky_share = 0;
-    if (b.canvas) {
-        c = lin[0];
-    } else {
-        Color sky = mix(lin[1], lin[0], smoothstep(0.0f, 0.6f, e));
-        Color ground = mix(lin[2], lin[3], smoothstep(0.0f, 0.5f, -e));
-        sky_share = smoothstep(-b.horizon_softness, b.horizon_softness, e);
-        c = mix(ground, sky, sky_share);
-    }
-    if (b.texture > 0) {
-        // Attached to the view direction, so it does not swim when the camera moves.
-        float az = static_cast<float>(pmath::atan2(dir.x, -dir.z));
-        float n = fractal_noise(az * 9.0f + 50.0f, e * 9.0f + 50.0f, 3);
-        c *= 1.0f + 2.0f * b.texture * (n - 0.5f);
-    }
-    return c;
-}
 
 // The pixels of row y that may hold a sample inside the sprite, given s and t's screen
 // gradients: each of 0 < s < 1 and 0 < t < 1 is a slab in x, widened by half a pixel in x and
@@ -555,65 +531,6 @@ Frame make_frame(const Camera& cam, bool aovs) {
     return frame;
 }
 
-namespace {
-void background_linear(const Background& bg, Color lin[4]) {
-    lin[0] = srgb_to_linear(bg.canvas ? bg.canvas_color : bg.sky_zenith);
-    lin[1] = srgb_to_linear(bg.sky_horizon);
-    lin[2] = srgb_to_linear(bg.ground_horizon);
-    lin[3] = srgb_to_linear(bg.ground_near);
-}
-}  // namespace
-
-Color background_at(const Background& bg, const glm::dvec3& dir) {
-    Color lin[4];
-    background_linear(bg, lin);
-    float share;
-    return background_color(bg, lin, dir, share);
-}
-
-void paint_background(const SceneDesc& scene, const Camera& cam, const StrokeLayer& strokes,
-                      Frame& frame, const StrokeLayer* sky) {
-    const Background& bg = scene.background;
-    Color lin[4];
-    background_linear(bg, lin);
-    // The background is smooth (a gradient under slow noise): it is evaluated on a lattice of
-    // every kBgStep-th pixel and interpolated bilinearly, 1/16 of the work.
-    constexpr int kBgStep = 4;
-    const int gw = (cam.width + kBgStep - 1) / kBgStep + 1;
-    const int gh = (cam.height + kBgStep - 1) / kBgStep + 1;
-    std::vector<Color> lattice(static_cast<size_t>(gw) * gh);
-    std::vector<float> share(lattice.size());
-    tbb::parallel_for(0, gh, [&](int j) {
-        for (int i = 0; i < gw; ++i) {
-            const size_t at = static_cast<size_t>(j) * gw + i;
-            lattice[at] = background_color(
-                bg, lin, ray_direction(cam, kBgStep * i + 0.5, kBgStep * j + 0.5), share[at]);
-        }
-    });
-    tbb::parallel_for(0, cam.height, [&](int y) {
-        const int j = y / kBgStep;
-        const float fy = static_cast<float>(y % kBgStep) / kBgStep;
-        const Color* r0 = &lattice[static_cast<size_t>(j) * gw];
-        const Color* r1 = r0 + gw;
-        for (int x = 0; x < cam.width; ++x) {
-            if (strokes.covered(static_cast<size_t>(y) * cam.width + x)) continue;
-            const int i = x / kBgStep;
-            const float fx = static_cast<float>(x % kBgStep) / kBgStep;
-            Color c = mix(mix(r0[i], r0[i + 1], fx), mix(r1[i], r1[i + 1], fx), fy);
-            if (sky) {
-                // The sky's strokes over the sky only: scaled by its share of the pixel.
-                const size_t pi = static_cast<size_t>(y) * cam.width + x, at = r0 - &lattice[0];
-                const float w = (share[at + i] * (1 - fx) + share[at + i + 1] * fx) * (1 - fy) +
-                                (share[at + gw + i] * (1 - fx) + share[at + gw + i + 1] * fx) * fy;
-                const float* s = &sky->color[3 * pi];
-                c = Color(s[0], s[1], s[2]) * w + c * (1.0f - w * (1.0f - sky->through[pi]));
-            }
-            float* px = &frame.rgba[4 * (static_cast<size_t>(y) * cam.width + x)];
-            px[0] = c.x, px[1] = c.y, px[2] = c.z, px[3] = 1.0f;
-        }
-    });
-}
-
 StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins& bins,
                           const FramePlan& plan, const RenderSettings& rs, Frame& frame,
                           const std::function<void(const char*, double)>* progress,
@@ -737,6 +654,23 @@ void composite_strokes(const StrokeLayer& strokes, const FramePlan& plan, const 
                 frame.depth[pi] = std::numeric_limits<float>::max();
         }
     });
+}
+
+StrokeLayer paint_stage(const FrameContext& ctx, const SpriteSet& sprites, const TileBins& bins,
+                        Frame& frame) {
+    StagePhase phase(ctx, "paint", true);
+    StrokeLayer strokes = paint_strokes(ctx.shot, sprites, bins, ctx.plan, ctx.render(), frame,
+                                        &ctx.settings.progress);
+    ctx.report.fragments = strokes.fragments;
+    phase.done("strokes front to back, tiles in parallel, each until it is covered",
+               std::to_string(strokes.fragments) + " fragments");
+    return strokes;
+}
+
+void composite_stage(const FrameContext& ctx, const StrokeLayer& strokes, Frame& frame) {
+    StagePhase phase(ctx, "composite");
+    composite_strokes(strokes, ctx.plan, ctx.render(), frame);
+    phase.done("the strokes over what lies under them");
 }
 
 }  // namespace pleinair

@@ -5,11 +5,11 @@
 
 #include <cstdint>
 
-#include "pipeline/frame/tile_bins.h"
+#include "pipeline/frame/frame_context.h"
 #include "pipeline/frame/frame_image.h"
 #include "pipeline/frame/frame_plan.h"
-#include "pipeline/shot/rays.h"
 #include "pipeline/frame/sprites.h"
+#include "pipeline/frame/tile_bins.h"
 
 namespace pleinair {
 
@@ -53,37 +53,20 @@ StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& sprites, const Tile
                           const std::function<void(const char*, double)>* progress = nullptr,
                           const StrokeLayer* behind = nullptr);
 
-// Sky and ground seen from the camera (or the canvas colour), with slow noise, where the
-// strokes let it show; under the painted sky's strokes (`sky`, painted behind `strokes`) when
-// the scene has them.
-void paint_background(const SceneDesc& scene, const Camera& cam, const StrokeLayer& strokes,
-                      Frame& frame, const StrokeLayer* sky = nullptr);
-
-// The background's colour (linear, before its lattice and the painted sky) in a unit
-// direction: what a reflected ray that meets nothing sees when the scene has no painted sky.
-Color background_at(const Background& background, const glm::dvec3& direction);
-
-// The flat palette colour the underpainting gives a camera-scene hit `h` at `world` (normal n,
-// seen along dir): its material's palette at a middle-depth stroke's lightness, in the sun's
-// light and shadow, pushed into the distance when the plan has atmosphere; water mirrors what
-// it reflects when the plan has reflections.
-Color underpaint_color(const Shot& shot, const FrameView& view, const FramePlan& plan,
-                       const RenderSettings& settings, const RayScene* sun_rays, const RayHit& h,
-                       const glm::dvec3& world, glm::vec3 n, const glm::dvec3& dir);
-
-// A flat palette colour and a depth where the camera sees terrain, water, rocks or trunks, at
-// underpaint_scale of the resolution, so no sky shows between strokes, over the background.
-// Coverage is interpolated, so silhouettes stay soft. Only cells under pixels the strokes leave
-// open are traced (all of them when the AOVs ask for depth). Returns the camera rays traced.
-uint64_t paint_underpainting(const Shot& shot, const FrameView& view, const FramePlan& plan,
-                             const RenderSettings& settings, const RayScene* sun_rays,
-                             const StrokeLayer& strokes, Frame& frame);
-
 // The strokes over what the frame holds beneath them: equal to compositing every stroke, the
 // underpainting and the background back to front with "over", to within the cutoff.
 // With pigment mixing (plan.pigment) the strokes' paint and what lies under it mix as
 // pigments; with a canvas (plan.canvas) its weave shows where the paint is thin.
 void composite_strokes(const StrokeLayer& strokes, const FramePlan& plan,
                        const RenderSettings& settings, Frame& frame);
+
+// The paint stage: the strokes front to back into their layer, the fragments in the report.
+// Strokes first, nearest first: the background and underpainting are then needed only where
+// the strokes leave some light through.
+StrokeLayer paint_stage(const FrameContext& ctx, const SpriteSet& sprites, const TileBins& bins,
+                        Frame& frame);
+
+// The composite stage: composite_strokes over what the frame holds.
+void composite_stage(const FrameContext& ctx, const StrokeLayer& strokes, Frame& frame);
 
 }  // namespace pleinair

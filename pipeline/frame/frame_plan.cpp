@@ -1,7 +1,7 @@
 // plan_frame: every decision of a frame, from the shot's plan and the frame settings.
 #include "pipeline/frame/frame_plan.h"
 
-#include "pipeline/frame/lod.h"
+#include "pipeline/frame/frame_view.h"
 #include "pipeline/shot/shot.h"
 
 namespace pleinair {
@@ -68,7 +68,7 @@ FramePlan plan_frame(const Shot& shot, const FrameSettings& settings) {
     add("underpaint", plan.underpaint,
         plan.underpaint ? "terrain or rocks are visible: flat colour and depth under the strokes"
                         : "no visible mesh (no terrain, no rocks)");
-    const bool circles = scene_has_circles(shot);
+    const bool circles = scene_has_circles(shot.scene);
     plan.lod = circles && settings.render.level_of_detail;
     add("level of detail", plan.lod,
         !circles ? "the camera carries no distance circles"

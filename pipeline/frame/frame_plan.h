@@ -5,15 +5,15 @@
 #include <functional>
 #include <vector>
 
+#include "pipeline/frame/frame_view.h"
 #include "pipeline/input/camera.h"
 #include "pipeline/input/distance_circles.h"
-#include "pipeline/shot/pass_report.h"
 #include "pipeline/input/settings.h"
+#include "pipeline/shot/pass_report.h"
 
 namespace pleinair {
 
 struct Shot;
-struct FrameView;
 
 // How a frame is painted from a shot: nothing in here rebuilds anything.
 struct FrameSettings {
@@ -22,8 +22,8 @@ struct FrameSettings {
     // Benchmarks only: each sprite's footprint blended with a constant colour at opacity 0.5
     // instead of shaded, to measure what the shader costs over the bare blend.
     bool bare_blend = false;
-    // The coherence bench only (coherence_measures.h): keep the sprites and each pixel's two nearest
-    // strokes (FrameReport::trace); see the level of detail from `lod_view` instead of the
+    // The coherence bench only (coherence_measures.h): keep the sprites and each pixel's two
+    // nearest strokes (FrameReport::trace); see the level of detail from `lod_view` instead of the
     // frame's (frozen at another frame); shift every stroke's noise by `noise_reseed` (boiling).
     bool trace = false;
     const FrameView* lod_view = nullptr;
@@ -34,20 +34,6 @@ struct FrameSettings {
     // Told when each stage starts (done 0) and how far the paint stage has come, for frames
     // long enough to report on; called from worker threads (the callee serializes).
     std::function<void(const char* stage, double done)> progress;
-};
-
-// What the camera track and the sun's keys give at the frame's time. The sun is the view's only
-// when the scene keys it; a still sun is the shot's (its light and casters were built for it).
-struct FrameView {
-    Camera camera;
-    glm::dvec3 sun_direction{0, 1, 0};  // towards the sun, unit
-    DistanceCircles circles;            // carried by the camera (IV.6)
-    // On a camera track, at `time` seconds: the level of detail replays the track up to it.
-    bool on_track = false;
-    double time = 0;
-    // How far the eye moves in one frame there (zero for a still): strokes whose distances from
-    // the eye are about to cross blend from one order to the other (composite.h).
-    double eye_speed = 0;
 };
 
 // How a frame learns each particle's light.

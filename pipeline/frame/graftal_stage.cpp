@@ -11,11 +11,10 @@
 
 #include "generators/rng.h"
 #include "generators/tree_mesh.h"
+#include "pipeline/frame/frame_view.h"
+#include "pipeline/frame/graftal_placement.h"
 #include "pipeline/shot/graftal_draw.h"
 #include "pipeline/shot/graftal_lod.h"
-#include "pipeline/frame/graftal_placement.h"
-#include "pipeline/frame/lod.h"
-#include "pipeline/frame/paint_frame.h"
 #include "pipeline/shot/shot.h"
 #include "shading/curves.h"
 #include "shading/portable_math.h"
@@ -23,21 +22,6 @@
 namespace pleinair {
 
 namespace {
-
-// Fixed: a site's key and its object already tell every tuft apart.
-constexpr uint64_t kGraftalSeed = 0x6772616674616cull;  // "graftal"
-
-ShotGraftals group_of(std::shared_ptr<const GraftalDesc> desc, std::vector<GraftalSite> sites) {
-    ShotGraftals g;
-    g.desc = std::move(desc);
-    g.sites = std::move(sites);
-    g.instances = grow_tufts(*g.desc, g.sites, kGraftalSeed);
-    g.first.assign(g.sites.size() + 1, 0);
-    // grow_tufts lists each site's graftals together, in site order.
-    for (const GraftalInstance& i : g.instances) ++g.first[i.tuft + 1];
-    for (size_t s = 0; s < g.sites.size(); ++s) g.first[s + 1] += g.first[s];
-    return g;
-}
 
 // λ of a graftal of world length `length` at `position` with normal `n`, seen by `cam`, at τ
 // (its ρ too, when asked).
@@ -178,58 +162,6 @@ struct Draw {
 };
 
 }  // namespace
-
-std::vector<ShotGraftals> build_graftals(const Shot& shot) {
-    std::vector<ShotGraftals> out;
-    const SceneDesc& scene = shot.scene;
-    const std::vector<BuiltTree>& trees = *shot.trees;
-    for (size_t i = 0; i < trees.size(); ++i) {
-        const BuiltTree& b = trees[i];
-        const Family& fam = scene.families[b.family];
-        if (!fam.graftal) continue;
-        const LeafParticles& L = b.tree.leaves;
-        const TreePlacement& pl = shot.placements[i];
-        std::vector<glm::dvec3> world(L.size());
-        std::vector<glm::vec3> normals(L.size());
-        for (size_t j = 0; j < L.size(); ++j)
-            world[j] = pl.place(L.position[j]), normals[j] = pl.turn(L.normal[j]);
-        GraftalDesc scaled = *fam.graftal;
-        scaled.length *= static_cast<float>(b.scale);  // a tree's graftals grow with it
-        out.push_back(
-            group_of(std::make_shared<const GraftalDesc>(std::move(scaled)),
-                     leaf_sites(*fam.graftal, world, normals, kGraftalSeed, b.tree.id + 1)));
-    }
-    const BuiltLandscape& land = *shot.land;
-    for (size_t m = 0; m < scene.materials.size(); ++m) {
-        const auto& desc = scene.materials[m].graftal;
-        if (!desc) continue;
-        const uint32_t object = 0x10000u + static_cast<uint32_t>(m);
-        std::vector<GraftalSite> sites;
-        // The difference image chooses among candidates at the description's density.
-        GraftalDesc candidates = *desc;
-        if (candidates.placement == GraftalPlacement::kDifference)
-            candidates.placement = GraftalPlacement::kDensity;
-        if (land.has_terrain) {
-            for (const GraftalSite& s :
-                 mesh_sites(candidates, land.terrain_mesh, kGraftalSeed, object)) {
-                if (terrain_material_at(scene, s.position) != m) continue;
-                if (land.has_water && s.position.y <= scene.water.level) continue;
-                sites.push_back(s);
-            }
-        }
-        for (size_t r = 0; r < scene.rocks.size() && r < land.rocks.size(); ++r) {
-            if (scene.rocks[r].material != m) continue;
-            // Keys apart from the terrain's: a rock's sites are numbered from 2^40 x (r + 1).
-            for (GraftalSite s :
-                 mesh_sites(candidates, land.rocks[r], kGraftalSeed + r + 1, object)) {
-                s.key += (uint64_t(r) + 1) << 40;
-                sites.push_back(s);
-            }
-        }
-        if (!sites.empty()) out.push_back(group_of(desc, std::move(sites)));
-    }
-    return out;
-}
 
 Sprite patch_sprite(const GraftalPatch& patch, const FrameView& view, const glm::dvec3& at) {
     const Camera& cam = view.camera;
@@ -373,6 +305,27 @@ std::vector<uint64_t> graftal_keys(const Shot& shot) {
             out.push_back(particle_key(first_item + static_cast<uint32_t>(gi), SpriteKind::kGraftal,
                                        static_cast<uint32_t>(k)));
     return out;
+}
+
+void graftals_stage(const FrameContext& ctx, SpriteSet& sprites) {
+    StagePhase phase(ctx, "graftals");
+    const RenderSettings& rs = ctx.render();
+    const GraftalStageReport g =
+        add_graftal_sprites(ctx.shot, ctx.view, rs, sprites, ctx.settings.lod_view);
+    ctx.report.graftal_sprites = sprites.graftal;
+    std::string levels;
+    for (size_t l = 0; l < g.at_level.size(); ++l)
+        levels += (l ? ", " : "") + std::to_string(g.at_level[l]);
+    phase.done("tufts' levels from λ" +
+                   (ctx.view.on_track ? ", filtered over " + std::to_string(g.replayed) +
+                                            " frames of the track replayed"
+                                      : std::string()) +
+                   "; graftals drawn by " +
+                   (rs.graftal_raster == GraftalRaster::kCairo ? "Cairo" : "scanline coverage") +
+                   " into patches (" + std::to_string(int(g.draw_ms + 0.5)) + " ms of it)",
+               std::to_string(g.tufts) + " tufts (per level: " + levels + "), " +
+                   std::to_string(g.drawn) + " graftals drawn (" + std::to_string(g.growing) +
+                   " growing or fading), " + std::to_string(g.pixels) + " patch pixels");
 }
 
 }  // namespace pleinair

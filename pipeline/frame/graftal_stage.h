@@ -7,19 +7,14 @@
 #include <cstdint>
 #include <vector>
 
-#include "pipeline/shot/graftal_instances.h"
+#include "pipeline/frame/frame_context.h"
 #include "pipeline/frame/sprites.h"
+#include "pipeline/shot/graftal_instances.h"
 
 namespace pleinair {
 
 struct Shot;
 struct FrameView;
-
-// Once per shot: the graftals of every family whose style is a graftal description (at its
-// trees' leaf particles) and of every such material (on the terrain where the terrain has that
-// material, above any water, and on the rocks made of it), sites and tufts keyed so that a
-// tree or a face keeps its graftals whatever else the scene holds.
-std::vector<ShotGraftals> build_graftals(const Shot& shot);
 
 struct GraftalStageReport {
     uint64_t tufts = 0;              // in the shot
@@ -65,5 +60,9 @@ std::vector<std::vector<float>> difference_placement(const Shot& shot, const Cam
 // graftal).
 std::vector<float> graftal_presences(const Shot& shot, const FrameView& view);
 std::vector<uint64_t> graftal_keys(const Shot& shot);
+
+// The graftals stage: add_graftal_sprites after the strokes' sprites (so their indices and the
+// shadow grids' stay as they are), its pass line.
+void graftals_stage(const FrameContext& ctx, SpriteSet& sprites);
 
 }  // namespace pleinair

@@ -10,13 +10,13 @@
 #include <glm/matrix.hpp>
 
 #include "generators/rng.h"
-#include "pipeline/input/camera.h"
-#include "pipeline/frame/frame_plan.h"
+#include "pipeline/frame/frame_view.h"
 #include "pipeline/frame/graftal_stage.h"
+#include "pipeline/frame/sprites.h"
+#include "pipeline/input/camera.h"
 #include "pipeline/shot/landscape.h"
 #include "pipeline/shot/rays.h"
 #include "pipeline/shot/shot.h"
-#include "pipeline/frame/sprites.h"
 #include "shading/curves.h"
 #include "shading/portable_math.h"
 
@@ -37,121 +37,13 @@ float smooth01(float e0, float e1, float x) {
 
 }  // namespace
 
-ImposterObject make_imposter_object(std::shared_ptr<const ImposterDesc> desc, const QuadMesh& mesh,
-                                    const glm::dvec3& position, const glm::dmat3& linear,
-                                    double scale, uint32_t object_id, uint64_t key,
-                                    const std::vector<bool>& excluded) {
-    ImposterObject o;
-    const ImposterDesc& d = *desc;
-    o.desc = std::move(desc);
-    o.mesh = &mesh;
-    o.position = position, o.linear = linear;
-    o.scale = scale;
-    o.height = double(d.height) * scale;
-    o.object_id = object_id, o.key = key;
-    o.edges = mesh_edges(mesh);
-    const std::vector<glm::dvec3> n = face_normals(mesh);
-    o.normals.resize(n.size());
-    for (size_t f = 0; f < n.size(); ++f) o.normals[f] = unit_or(n[f], glm::vec3(0.0f));
-    const Bounds box = bounds_of(mesh.positions);
-    auto uv_of = [&](const glm::vec3& p) { return imposter_uv(d.uv, p, box.min, box.max); };
-    // The control texture at each edge's middle, thinned to `coverage` by a hash of the edge.
-    const size_t nv = mesh.positions.size();
-    o.rows.assign(o.edges.size(), int8_t{-1});
-    auto out = [&](uint32_t f) { return !excluded.empty() && excluded[f]; };
-    for (size_t i = 0; i < o.edges.size(); ++i) {
-        const MeshEdge& e = o.edges[i];
-        if (out(e.face0) || (e.face1 != MeshEdge::kBorder && out(e.face1))) continue;
-        if (d.coverage < 1.0f) {
-            const double u = double(hash_keys(key, 0x636f766572ull /* "cover" */,
-                                              std::min(e.a, e.b), std::max(e.a, e.b)) >>
-                                    11) *
-                             (1.0 / 9007199254740992.0);
-            if (!(u < d.coverage)) continue;
-        }
-        const int row = control_row(d, uv_of(0.5f * (mesh.positions[e.a] + mesh.positions[e.b])));
-        // A control image's green or blue over an atlas of fewer rows: nothing there.
-        o.rows[i] = static_cast<int8_t>(d.atlas && row < d.atlas->rows ? row : -1);
-    }
-    const bool wrap = d.uv == ImposterUv::kCylinder;  // round the object; a plan's sides clamp
-    // The colour texture at each vertex.
-    o.colors.resize(nv);
-    for (size_t v = 0; v < nv; ++v) {
-        const glm::vec2 uv = uv_of(mesh.positions[v]);
-        o.colors[v] = !d.color.empty() ? glm::vec3(d.color.sample(uv.x, 1.0f - uv.y, wrap))
-                                       : d.bottom + (d.top - d.bottom) * uv.y;
-    }
-    // The vector field at each edge's middle, in the mesh's frame.
-    const glm::dmat3 inv = glm::inverse(linear);
-    const glm::vec3 up_local = unit_or(inv * glm::dvec3(0, 1, 0), glm::vec3(0, 1, 0));
-    o.directions.resize(o.edges.size());
-    for (size_t i = 0; i < o.edges.size(); ++i) {
-        const MeshEdge& e = o.edges[i];
-        const glm::vec3 n_edge = unit_or(
-            glm::dvec3(o.normals[e.face0]) +
-                (e.face1 == MeshEdge::kBorder ? glm::dvec3(0.0) : glm::dvec3(o.normals[e.face1])),
-            o.normals[e.face0]);
-        glm::vec3 dir = d.normal * n_edge + d.up * up_local;
-        if (!d.field.empty()) {
-            const glm::vec2 uv = uv_of(0.5f * (mesh.positions[e.a] + mesh.positions[e.b]));
-            dir += glm::vec3(d.field.sample(uv.x, 1.0f - uv.y, wrap)) * 2.0f - 1.0f;
-        }
-        o.directions[i] = unit_or(glm::dvec3(dir), n_edge);
-    }
-    return o;
-}
-
-std::vector<ImposterObject> build_imposters(const Shot& shot) {
-    std::vector<ImposterObject> out;
-    const SceneDesc& scene = shot.scene;
-    for (size_t i = 0; i < shot.trees->size(); ++i) {
-        const BuiltTree& b = (*shot.trees)[i];
-        const auto& desc = scene.families[b.family].imposters;
-        if (!desc) continue;
-        const QuadMesh& mesh =
-            desc->mesh == ImposterMesh::kControl ? b.tree.control : b.tree.render;
-        const TreePlacement& pl = shot.placements[i];
-        out.push_back(make_imposter_object(desc, mesh, pl.position, pl.linear(), pl.scale,
-                                           b.tree.id + 1, hash_keys(0x74726565ull, b.tree.id)));
-    }
-    const BuiltLandscape& land = *shot.land;
-    for (size_t m = 0; m < scene.materials.size(); ++m) {
-        const auto& desc = scene.materials[m].imposters;
-        if (!desc) continue;
-        const uint32_t object = 0x10000u + static_cast<uint32_t>(m);
-        if (land.has_terrain) {
-            const QuadMesh& t = land.terrain_mesh;
-            std::vector<bool> excluded(t.quads.size(), true);
-            bool any = false;
-            for (size_t f = 0; f < t.quads.size(); ++f) {
-                glm::dvec3 c(0.0);
-                for (int k = 0; k < 4; ++k) c += glm::dvec3(t.positions[t.quads[f][k]]);
-                c *= 0.25;
-                const bool mine = terrain_material_at(scene, c) == m &&
-                                  !(land.has_water && c.y <= scene.water.level);
-                excluded[f] = !mine, any |= mine;
-            }
-            if (any)
-                out.push_back(make_imposter_object(desc, t, glm::dvec3(0.0), glm::dmat3(1.0), 1.0,
-                                                   object, hash_keys(0x7465727261ull, m),
-                                                   excluded));
-        }
-        for (size_t r = 0; r < scene.rocks.size() && r < land.rocks.size(); ++r)
-            if (scene.rocks[r].material == m)
-                out.push_back(make_imposter_object(desc, land.rocks[r], glm::dvec3(0.0),
-                                                   glm::dmat3(1.0), 1.0, object,
-                                                   hash_keys(0x726f636bull, r)));
-    }
-    return out;
-}
-
 std::vector<ImposterCandidate> imposter_candidates(const ImposterObject& o, const Camera& cam,
                                                    const glm::vec3& sun, double eye_speed) {
     std::vector<ImposterCandidate> out;
     const ImposterDesc& d = *o.desc;
     const QuadMesh& mesh = *o.mesh;
     const glm::dvec3 eye = glm::inverse(o.linear) * (cam.eye - o.position);
-    const int columns = d.atlas ? d.atlas->columns : 1;
+    const int columns = o.atlas ? o.atlas->columns : 1;
     for (uint32_t i = 0; i < o.edges.size(); ++i) {
         const MeshEdge& e = o.edges[i];
         glm::dvec3 pa(mesh.positions[e.a]), pb(mesh.positions[e.b]);
@@ -272,7 +164,7 @@ ImposterStageReport add_imposter_sprites(const Shot& shot, const FrameView& view
             seen[k] = float(n) / float(rays);
             if (n == 0) return;
         }
-        patches[k] = draw_imposter(*shot.imposters[draws[k].object].desc->atlas, q, cam);
+        patches[k] = draw_imposter(*shot.imposters[draws[k].object].atlas, q, cam);
     });
     const uint32_t first_item = static_cast<uint32_t>(shot.item_count() + shot.graftals.size());
     for (size_t k = 0; k < draws.size(); ++k) {
@@ -325,6 +217,17 @@ std::vector<uint64_t> imposter_keys(const Shot& shot) {
             out.push_back(particle_key(first_item + static_cast<uint32_t>(k), SpriteKind::kGraftal,
                                        static_cast<uint32_t>(i)));
     return out;
+}
+
+void imposters_stage(const FrameContext& ctx, SpriteSet& sprites, const SeenWindow& seen) {
+    StagePhase phase(ctx, "imposters");
+    const ImposterStageReport im = add_imposter_sprites(ctx.shot, ctx.view, sprites, &seen);
+    ctx.report.imposter_sprites = im.drawn;
+    phase.done("silhouette edges (and edges turning towards one) of " + std::to_string(im.objects) +
+                   " meshes extruded along the vector field, drawn from the atlas and keyed",
+               std::to_string(im.candidates) + " edges the control allows, " +
+                   std::to_string(im.hidden) + " hidden, " + std::to_string(im.drawn) +
+                   " imposters drawn, " + std::to_string(im.pixels) + " patch pixels");
 }
 
 }  // namespace pleinair

@@ -10,7 +10,10 @@
 #include <memory>
 #include <vector>
 
+#include "pipeline/frame/frame_context.h"
+#include "pipeline/frame/imposter_draw.h"
 #include "pipeline/input/imposter_desc.h"
+#include "pipeline/shot/imposter_objects.h"
 #include "pipeline/shot/silhouette.h"
 
 namespace pleinair {
@@ -19,41 +22,6 @@ struct Shot;
 struct FrameView;
 struct SpriteSet;
 struct SeenWindow;
-
-// A mesh that carries imposters, with everything about it that no view changes: its edges and
-// their faces, unit face normals, each edge's atlas row (-1: none), each vertex's colour and each
-// edge's direction, all in the mesh's own frame; world = position + linear x p.
-struct ImposterObject {
-    std::shared_ptr<const ImposterDesc> desc;
-    const QuadMesh* mesh = nullptr;  // the shot's (a tree's render or control mesh, a rock, the
-                                     // terrain)
-    glm::dvec3 position{0.0};
-    glm::dmat3 linear{1.0};
-    double scale = 1;   // world units per unit of the mesh
-    double height = 0;  // world length of the extrusion
-    std::vector<MeshEdge> edges;
-    std::vector<glm::vec3> normals;  // unit, per face
-    // Per edge: the control texture at its middle, thinned by `coverage`. The paper reads it at
-    // the front face's centre; per edge, an edge keeps its row whichever face turns to the eye,
-    // so nothing appears or goes as the silhouette passes over it.
-    std::vector<int8_t> rows;
-    std::vector<glm::vec3> colors;      // linear, per vertex
-    std::vector<glm::vec3> directions;  // unit, per edge
-    uint32_t object_id = 0;  // the sprites' object id (a tree's, a rock's, the terrain's)
-    uint64_t key = 0;        // its columns' hash seed
-};
-
-// One object's fixed parts, from its description and mesh; excluded faces are those the
-// scene paints otherwise (another material, under water): `excluded` per face, or empty. An
-// edge carries imposters only if no face of it is excluded.
-ImposterObject make_imposter_object(std::shared_ptr<const ImposterDesc> desc, const QuadMesh& mesh,
-                                    const glm::dvec3& position, const glm::dmat3& linear,
-                                    double scale, uint32_t object_id, uint64_t key,
-                                    const std::vector<bool>& excluded = {});
-
-// Once per shot: every family's trees whose family names imposters, every rock whose material
-// does, and the terrain where its material does (above any water).
-std::vector<ImposterObject> build_imposters(const Shot& shot);
 
 // What an object shows at a view: one quad per edge at or near its silhouette that the control
 // allows, in edge order, with the weight that fades it (1 on the silhouette, less as the edge
@@ -93,5 +61,8 @@ ImposterStageReport add_imposter_sprites(const Shot& shot, const FrameView& view
 // edge; and the sprite keys they go by, in the same order.
 std::vector<float> imposter_presences(const Shot& shot, const FrameView& view);
 std::vector<uint64_t> imposter_keys(const Shot& shot);
+
+// The imposters stage: add_imposter_sprites with the frame's seen window, its pass line.
+void imposters_stage(const FrameContext& ctx, SpriteSet& sprites, const SeenWindow& seen);
 
 }  // namespace pleinair

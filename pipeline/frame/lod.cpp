@@ -6,11 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #define GLM_ENABLE_EXPERIMENTAL
+#include <cstdio>
 #include <glm/gtx/norm.hpp>
 
 #include "pipeline/input/camera_track.h"
-#include "pipeline/frame/frame_plan.h"
-#include "pipeline/frame/paint_frame.h"
 #include "pipeline/shot/shot.h"
 #include "shading/curves.h"
 #include "shading/portable_math.h"
@@ -42,16 +41,6 @@ double max_fade_rate(double shortest_fade, float g) {
         steepest = std::max(
             steepest, double(gain((i + 1.0f) / kSteps, g) - gain(float(i) / kSteps, g)) * kSteps);
     return std::max(shortest_fade, 0.02) / (kMinFadeFrames * steepest);
-}
-
-std::vector<FrameView> replay_path(const SceneDesc& scene, const FrameView& view) {
-    if (!view.on_track) return {view};
-    std::vector<FrameView> path;
-    const int first = track_first_frame(scene.camera_track, scene.fps);
-    for (int f = first; frame_time(f, scene.fps) < view.time; ++f)
-        path.push_back(view_at(scene, frame_time(f, scene.fps)));
-    path.push_back(view);
-    return path;
 }
 
 float near_field_fade(float near_value, float center_distance, float label, float g) {
@@ -258,12 +247,6 @@ ParticleLod particle_lod(const Shot& shot, const FrameLod& lod, size_t item, Spr
     return out;
 }
 
-bool scene_has_circles(const Shot& shot) {
-    const SceneDesc& s = shot.scene;
-    if (s.circles.any()) return true;
-    return !s.camera_track.keys.empty() && circles_of(s.camera_track.keys.front(), {}).any();
-}
-
 FrameLod level_of_detail(const Shot& shot, const FrameView& view, const RenderSettings& rs) {
     FrameLod lod;
     lod.camera = view.camera;
@@ -333,6 +316,50 @@ FrameLod level_of_detail(const Shot& shot, const FrameView& view, const RenderSe
         t.growth = std::min(max_growth, pmath::pow(std::max(t.kept, floor), -kGrowthPower));
         radial_spread(L, alpha, b.tree.center, max_growth, t);
     });
+    return lod;
+}
+
+namespace {
+
+// The level of detail's line for --explain: the circles (into `why`), and how far the trees
+// have faded.
+std::string lod_detail(const FrameLod& lod, std::string& why) {
+    auto num = [](double v) {
+        char b[32];
+        std::snprintf(b, sizeof b, "%g", v);
+        return std::string(b);
+    };
+    const DistanceCircles& c = lod.circles;
+    std::string what;
+    if (lod.leaves) what += "leaves " + num(c.leaf_near) + "-" + num(c.leaf_far);
+    if (lod.trunks)
+        what += std::string(what.empty() ? "" : ", ") + "trunks " + num(c.trunk_near) + "-" +
+                num(c.trunk_far);
+    if (lod.near_field)
+        what += std::string(what.empty() ? "" : ", ") + "near field " + num(c.near_field);
+    std::string detail;
+    if (lod.leaves && !lod.trees.empty()) {
+        double kept = 0;
+        float most = 1;
+        for (const TreeLod& t : lod.trees) kept += t.kept, most = std::max(most, t.growth);
+        detail = "leaves kept " + num(std::round(1000 * kept / lod.trees.size()) / 10) +
+                 "% on average, survivors grown up to " + num(std::round(100 * most) / 100) + "x";
+    }
+    why = "distance circles: " + (what.empty() ? "none" : what);
+    return detail;
+}
+
+}  // namespace
+
+FrameLod lod_stage(const FrameContext& ctx) {
+    StagePhase phase(ctx, "level of detail");
+    const FrameView& view = ctx.settings.lod_view ? *ctx.settings.lod_view : ctx.view;
+    FrameLod lod = level_of_detail(ctx.shot, view, ctx.render());
+    if (ctx.plan.lod) {
+        std::string why;
+        std::string detail = lod_detail(lod, why);
+        phase.done(std::move(why), std::move(detail));
+    }
     return lod;
 }
 

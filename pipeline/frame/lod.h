@@ -8,11 +8,12 @@
 #include <glm/vec3.hpp>
 #include <vector>
 
+#include "pipeline/frame/frame_context.h"
+#include "pipeline/frame/frame_view.h"
 #include "pipeline/input/camera.h"
 #include "pipeline/input/distance_circles.h"
-#include "pipeline/frame/frame_plan.h"
-#include "pipeline/shot/materials.h"
 #include "pipeline/input/settings.h"
+#include "pipeline/shot/materials.h"
 
 namespace pleinair {
 
@@ -61,9 +62,6 @@ struct FrameLod {
 // settings.
 FrameLod level_of_detail(const Shot& shot, const FrameView& view, const RenderSettings& settings);
 
-// Whether the scene carries circles anywhere (on the camera or on its track's keys).
-bool scene_has_circles(const Shot& shot);
-
 // Depth of a world point along the camera's view axis (the plane through the eye).
 double view_depth(const Camera& cam, const glm::dvec3& world);
 
@@ -83,12 +81,6 @@ constexpr float kBarkFadeSpan = 0.4f;
 // The most a tree's distance value may change in one frame so that a fade of length
 // `shortest_fade` (eased by gain g) takes at least kMinFadeFrames frames.
 double max_fade_rate(double shortest_fade, float g);
-
-// The views a tree's distance values are replayed along to reach `view` (DESIGN.md: history is
-// replayed from the camera track, never carried from the frame painted before): the track's
-// frames from its first up to the view's time, then the view itself; the view alone for a
-// still.
-std::vector<FrameView> replay_path(const SceneDesc& scene, const FrameView& view);
 
 // A leaf's opacity at its tree's distance value: 1 up to fade_begin, 0 from fade_end, eased
 // between by Perlin's gain (IV.6); a step at fade_begin when the two are equal.
@@ -136,5 +128,9 @@ struct ParticleLod {
 ParticleLod particle_lod(const Shot& shot, const FrameLod& lod, size_t item, SpriteKind kind,
                          size_t j, const glm::dvec3& world);
 inline float near_field_scale(float near_value) { return 1.0f - 0.4f * near_value; }
+
+// The level-of-detail stage: level_of_detail as seen from the frame's view (or the settings'
+// lod_view), its pass line when the plan has it.
+FrameLod lod_stage(const FrameContext& ctx);
 
 }  // namespace pleinair

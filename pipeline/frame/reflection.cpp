@@ -8,9 +8,10 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 
-#include "pipeline/frame/composite.h"
-#include "pipeline/shot/shot.h"
+#include "pipeline/frame/background.h"
 #include "pipeline/frame/sky_sprites.h"
+#include "pipeline/frame/surface_hit.h"
+#include "pipeline/shot/shot.h"
 #include "shading/portable_math.h"
 
 namespace pleinair {
@@ -60,8 +61,8 @@ Color mirrored(const MirrorContext& c, const RayOrigin& at, const glm::vec3& n,
     if (h.hit) {
         // The hit's own flat colour, as the underpainting paints it (it casts its shadow ray);
         // the water's atmosphere comes after, on the mirrored colour.
-        seen = underpaint_color(c.shot, c.view, c.flat, c.settings, c.sun_rays, h,
-                                from + r * static_cast<double>(h.t), h.normal, r);
+        seen = surface_hit_color(c.shot, c.view, c.flat, c.settings, c.sun_rays, h,
+                                 from + r * static_cast<double>(h.t), h.normal, r);
         rays += c.flat.shadows && c.sun_rays;
     } else {
         seen = c.plan.sky ? sky_color(scene, rf, glm::vec3(c.view.sun_direction))
@@ -136,6 +137,17 @@ ReflectionReport add_reflections(const MirrorContext& c, SpriteSet& set) {
     rep.strokes = strokes.combine(std::plus<uint64_t>());
     rep.rays = rays.combine(std::plus<uint64_t>());
     return rep;
+}
+
+void reflections_stage(const FrameContext& ctx, const RayScene* sun_rays, SpriteSet& sprites) {
+    StagePhase phase(ctx, "reflections");
+    const ReflectionReport r = add_reflections(
+        mirror_context(ctx.shot, ctx.view, ctx.plan, ctx.render(), sun_rays), sprites);
+    ctx.report.reflection_rays = r.rays;
+    phase.done(
+        "each water stroke in view takes the colour its reflected ray finds (surfaces, "
+        "trunks, leaf strokes, the sky), by water's Fresnel reflectance",
+        std::to_string(r.strokes) + " water strokes, " + std::to_string(r.rays) + " rays");
 }
 
 }  // namespace pleinair

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <glm/vec3.hpp>
 
+#include "pipeline/frame/frame_context.h"
 #include "pipeline/frame/frame_plan.h"
 #include "pipeline/frame/sprites.h"
 
@@ -47,5 +48,8 @@ struct ReflectionReport {
 
 // Every water stroke's mirror for the frame, in parallel (the plan's reflections).
 ReflectionReport add_reflections(const MirrorContext& c, SpriteSet& sprites);
+
+// The reflections stage: add_reflections for the frame, its rays in the report.
+void reflections_stage(const FrameContext& ctx, const RayScene* sun_rays, SpriteSet& sprites);
 
 }  // namespace pleinair

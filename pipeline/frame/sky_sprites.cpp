@@ -1,12 +1,12 @@
-// build_sky_strokes, sky_sprites and sky_color.
+// sky_sprites and sky_color.
 #include "pipeline/frame/sky_sprites.h"
 
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <limits>
+#include <string>
 
-#include "generators/rng.h"
 #include "pipeline/shot/shot.h"
 #include "shading/portable_math.h"
 #include "shading/sky.h"
@@ -16,45 +16,10 @@ namespace pleinair {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-// The lowest row: a little under the horizon, so strokes reach the horizon's haze (the
-// background keeps them off the ground, composite.cpp).
-constexpr double kLowest = -0.03;
-// Cells are 0.55 of a stroke in each direction: every point of the sky under about three.
-constexpr double kSpacing = 0.55;
 // Ranges of sky sprites, beyond any world distance (kMaxWorldCoordinate), small before large.
 constexpr float kSmallRange = 1e30f, kBaseRange = 4e30f;
 
 }  // namespace
-
-SkyStrokes build_sky_strokes(const SceneDesc& scene) {
-    SkyStrokes out;
-    const SkyDesc& sky = scene.sky;
-    if (!sky.present || scene.background.canvas) return out;
-    const SkyParams& p = sky.params;
-    const double aspect = std::max<double>(sky.shader.stroke_aspect, 0.1);
-    for (int layer = 0; layer < (p.detail > 0 ? 2 : 1); ++layer) {
-        const double length = p.stroke_size * kPi / 180.0 * (layer ? 0.5 : 1.0);
-        const double row = kSpacing * length / aspect, col = kSpacing * length;
-        const int rows = static_cast<int>(std::ceil((0.5 * kPi - kLowest) / row));
-        for (int r = 0; r < rows; ++r) {
-            const double e0 = kLowest + r * row;
-            const double mid = std::min(e0 + 0.5 * row, 0.5 * kPi);
-            const int cols =
-                std::max(1, static_cast<int>(std::lround(2 * kPi * pmath::cos(mid) / col)));
-            for (int c = 0; c < cols; ++c) {
-                Rng rng = make_rng(sky.seed, Purpose::kSky, layer, r, c);
-                const double e = std::min(e0 + rand1(rng) * row, 0.5 * kPi);
-                const double az = (c + rand1(rng)) * 2 * kPi / cols;
-                const double ce = pmath::cos(e);
-                out.direction.emplace_back(ce * pmath::sin(az), pmath::sin(e),
-                                           -ce * pmath::cos(az));
-                out.label.push_back(static_cast<float>(rand1(rng)));
-                out.small.push_back(static_cast<uint8_t>(layer));
-            }
-        }
-    }
-    return out;
-}
 
 SpriteSet sky_sprites(const Shot& shot, const FrameView& view, const FramePlan& plan,
                       const RenderSettings& rs) {
@@ -137,6 +102,29 @@ SpriteSet sky_sprites(const Shot& shot, const FrameView& view, const FramePlan& 
 Color sky_color(const SceneDesc& scene, const glm::vec3& direction, const glm::vec3& sun) {
     return palette_lookup(scene.sky.palette,
                           sky_sample(scene.sky.params, direction, sun).lightness);
+}
+
+SkyLayer sky_stage(const FrameContext& ctx, const StrokeLayer& strokes, Frame& frame) {
+    StagePhase phase(ctx, "sky", true);
+    FramePlan sky_plan = ctx.plan;
+    sky_plan.aovs = false;
+    sky_plan.pigment = false;
+    sky_plan.canvas = false;
+    const Camera& cam = ctx.view.camera;
+    SkyLayer sky;
+    sky.sprites = sky_sprites(ctx.shot, ctx.view, ctx.plan, ctx.render());
+    const TileBins bins =
+        bin_sprites(sky.sprites.sprites, depth_order(sky.sprites.sprites), cam.width, cam.height);
+    sky.layer = paint_strokes(ctx.shot, sky.sprites, bins, sky_plan, ctx.render(), frame, nullptr,
+                              &strokes);
+    ctx.report.sky_sprites = sky.sprites.sprites.size();
+    ctx.report.fragments += sky.layer.fragments;
+    phase.done(
+        "the sky's strokes turned with the camera, painted where the strokes in front leave "
+        "light through",
+        std::to_string(sky.sprites.sprites.size()) + " of " + std::to_string(ctx.shot.sky.size()) +
+            " sky strokes in view, " + std::to_string(sky.layer.fragments) + " fragments");
+    return sky;
 }
 
 }  // namespace pleinair

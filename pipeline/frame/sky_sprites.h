@@ -1,32 +1,16 @@
-// The painted sky (issue 13): strokes laid over the sky's directions once per shot, turned into
+// The painted sky's frame side (issue 13): the shot's sky strokes (shot/sky_strokes.h) turned into
 // sprites each frame by the camera's rotation alone, and painted under every other stroke,
 // over the background's gradient, where the surfaces leave the sky in view.
 #pragma once
 
-#include <cstdint>
 #include <glm/vec3.hpp>
-#include <vector>
 
+#include "pipeline/frame/composite.h"
+#include "pipeline/frame/frame_context.h"
 #include "pipeline/frame/frame_plan.h"
 #include "pipeline/frame/sprites.h"
 
 namespace pleinair {
-
-struct SkyDesc;
-
-// The sky's strokes as directions (world, unit) from the eye: rows of equal angular height
-// from just under the horizon to the zenith, each row's strokes spaced by equal angles, a
-// jittered place in each cell. Two layers: base strokes of /sky/stroke_size, and half-size
-// strokes that only cloud edges keep.
-struct SkyStrokes {
-    std::vector<glm::vec3> direction;
-    std::vector<float> label;    // 0..1: noise offsets, size and angle jitter, order
-    std::vector<uint8_t> small;  // 1: an edge stroke
-    size_t size() const { return direction.size(); }
-};
-
-// Deterministic in /sky/seed; empty when the scene has no sky (or paints a canvas).
-SkyStrokes build_sky_strokes(const SceneDesc& scene);
 
 // The sky's sprites seen by the view's camera with its eye at the origin: where a stroke lies
 // on screen depends on the camera's rotation and field of view only. Sprites are SpriteKind::
@@ -38,5 +22,16 @@ SpriteSet sky_sprites(const Shot& shot, const FrameView& view, const FramePlan& 
 // The colour of the painted sky in a direction, as its strokes paint it before their noise:
 // the palette at sky_sample's lightness, linear. Reflections read it (water).
 Color sky_color(const SceneDesc& scene, const glm::vec3& direction, const glm::vec3& sun);
+
+// The painted sky behind every stroke, where they leave it in view: its sprites and its layer.
+struct SkyLayer {
+    SpriteSet sprites;
+    StrokeLayer layer;
+};
+
+// The sky stage: the sky's sprites painted under `strokes` (its own plan: no AOVs, for the sky
+// is the background in them; no pigments or canvas, for its strokes blend among themselves,
+// then lie under paint).
+SkyLayer sky_stage(const FrameContext& ctx, const StrokeLayer& strokes, Frame& frame);
 
 }  // namespace pleinair

@@ -327,31 +327,6 @@ ShadowGrid shadow_grid(const SpriteContext& c, const RayScene& sun_rays, const R
 
 }  // namespace
 
-SeenWindow seen_window(const SceneDesc& scene, const FrameView& view, const RenderSettings& rs) {
-    SeenWindow w;
-    const int n = rs.occlusion_frames;
-    const auto& keys = scene.camera_track.keys;
-    if (n <= 1 || !view.on_track || !(view.eye_speed > 0) || keys.empty()) return w;
-    // Lattice times (m + c) / fps, c = 1/2 for an even n so the window centres on the frame;
-    // the n nearest the frame's time. The epsilon keeps a frame's own time, (N - 1) / fps times
-    // fps, from rounding to the frame before.
-    const double u = view.time * scene.fps + 1e-6;
-    const double c = n % 2 == 0 ? 0.5 : 0.0;
-    const int64_t first = static_cast<int64_t>(std::floor(u - c)) - (n - 1) / 2;
-    for (int i = 0; i < n; ++i) {
-        const int64_t m = first + i;
-        const double t = std::clamp((static_cast<double>(m) + c) / scene.fps, keys.front().time,
-                                    keys.back().time);
-        Camera cam;
-        if (!make_camera(camera_of(track_at(scene.camera_track, t), scene.camera_params), cam)
-                 .empty())
-            cam = view.camera;  // a key the track's checks let through cannot fail here
-        w.cameras.push_back(cam);
-        w.heights.push_back(static_cast<uint8_t>(((m % 3) + 3) % 3));
-    }
-    return w;
-}
-
 float grid_at(const ShadowGrid& g, float s, float t) {
     constexpr int kGrid = kShadowGrid;
     const float x = std::clamp(s * kGrid - 0.5f, 0.0f, kGrid - 1.0f);
@@ -454,6 +429,34 @@ SpriteSet make_sprites(const SpriteStageInput& input) {
     all.shadow_rays = counters.shadow_rays.combine(std::plus<uint64_t>());
     all.hidden = counters.hidden.combine(std::plus<uint64_t>());
     return all;
+}
+
+SpriteSet sprites_stage(const FrameContext& ctx, const FrameLod& lod, const RayScene* sun_rays,
+                        const SeenWindow& seen) {
+    StagePhase phase(ctx, "sprites", true);
+    const FramePlan& plan = ctx.plan;
+    SpriteSet sprites =
+        make_sprites({ctx.shot, ctx.view, plan, ctx.render(), lod, sun_rays, &seen});
+    FrameReport& rep = ctx.report;
+    rep.leaf_sprites = sprites.leaf, rep.bark_sprites = sprites.bark;
+    rep.surface_sprites = sprites.surface, rep.culled = sprites.culled;
+    rep.shadow_rays = sprites.shadow_rays;
+    phase.done(
+        std::string("every particle faces the camera") +
+            (plan.fragment_shadows                     ? "; 4 x 4 shadow rays per sprite"
+             : plan.sun_light == SunLightSource::kShot ? "; light from the shot"
+             : plan.shadows                            ? "; a shadow ray per particle"
+                                                       : "") +
+            (!plan.underpaint       ? ""
+             : seen.cameras.empty() ? "; hidden ones culled"
+                                    : "; hidden ones culled, seen from where the eye is over " +
+                                          std::to_string(seen.cameras.size()) + " frames"),
+        std::to_string(sprites.sprites.size()) + " sprites, " + std::to_string(sprites.culled) +
+            " culled (" + std::to_string(sprites.hidden) + " hidden, " +
+            std::to_string(sprites.faded) + " faded out)" +
+            (sprites.shadow_rays ? ", " + std::to_string(sprites.shadow_rays) + " shadow rays"
+                                 : ""));
+    return sprites;
 }
 
 }  // namespace pleinair

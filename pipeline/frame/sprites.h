@@ -6,9 +6,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "pipeline/frame/frame_context.h"
 #include "pipeline/frame/frame_plan.h"
-#include "pipeline/shot/graftal_draw.h"
 #include "pipeline/frame/lod.h"
+#include "pipeline/shot/graftal_draw.h"
 #include "pipeline/shot/materials.h"
 #include "shading/stroke_shader.h"
 
@@ -74,20 +75,6 @@ struct SpriteSet {
     uint64_t shadow_rays = 0;
 };
 
-// Where rays towards the eye go to decide how much of a stroke is seen past the opaque
-// surfaces. A still camera: the frame's eye, from three heights on the sprite (its particle,
-// half way up and its top), so a stroke rising from behind a crest shows a third at a time.
-// A moving one (render/occlusion_frames n > 1): the camera at n times one frame apart around
-// the frame's, each ray from one of the three heights of the sprite as that camera draws it.
-// The times lie on a lattice fixed to the track's clock and each lattice time keeps its height,
-// so frame N + 1 casts n - 1 of frame N's rays again: the share seen changes by at most 1/n a
-// frame, whatever the silhouettes do.
-struct SeenWindow {
-    std::vector<Camera> cameras;   // empty: the frame's camera, at all three heights
-    std::vector<uint8_t> heights;  // per camera: 0, 1 or 2 (particle, half way, top)
-};
-SeenWindow seen_window(const SceneDesc& scene, const FrameView& view, const RenderSettings& rs);
-
 // What the sprites stage reads.
 struct SpriteStageInput {
     const Shot& shot;
@@ -106,5 +93,10 @@ SpriteSet make_sprites(const SpriteStageInput& input);
 // Leaves of a graftal-styled family and strokes of a graftal-styled material: no sprite, the
 // graftals stage draws those crowns and surfaces (graftal_stage.h).
 bool drawn_as_graftals(const Shot& shot, size_t item, SpriteKind kind, size_t particle);
+
+// The sprites stage: make_sprites with the frame's light source and seen window, its counts in
+// the report and its pass line.
+SpriteSet sprites_stage(const FrameContext& ctx, const FrameLod& lod, const RayScene* sun_rays,
+                        const SeenWindow& seen);
 
 }  // namespace pleinair

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace pleinair {
 
@@ -38,6 +39,18 @@ TileBins bin_sprites(const std::vector<Sprite>& sprites, const std::vector<uint3
                 t.bins[static_cast<size_t>(ty) * t.tiles_x + tx].push_back(idx);
     }
     return t;
+}
+
+TileBins order_stage(const FrameContext& ctx, const std::vector<Sprite>& sprites) {
+    StagePhase sort(ctx, "sort");
+    const std::vector<uint32_t> order = depth_order(sprites);
+    sort.done("depth order, ties by sprite");
+    StagePhase bin(ctx, "bin");
+    const Camera& cam = ctx.view.camera;
+    TileBins bins = bin_sprites(sprites, order, cam.width, cam.height);
+    bin.done("tiles paint in parallel",
+             std::to_string(bins.bins.size()) + " tiles of " + std::to_string(kTile) + " px");
+    return bins;
 }
 
 }  // namespace pleinair

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "pipeline/frame/frame_context.h"
 #include "pipeline/frame/sprites.h"
 
 namespace pleinair {
@@ -24,5 +25,8 @@ std::vector<uint32_t> depth_order(const std::vector<Sprite>& sprites);
 
 TileBins bin_sprites(const std::vector<Sprite>& sprites, const std::vector<uint32_t>& order,
                      int width, int height);
+
+// The sort and bin stages: depth order, then the sprites binned into the frame's tiles.
+TileBins order_stage(const FrameContext& ctx, const std::vector<Sprite>& sprites);
 
 }  // namespace pleinair

@@ -1,5 +1,8 @@
-// paint_underpainting: camera rays at a fraction of the resolution, one flat palette colour per
-// hit, interpolated up and composited over the background.
+// underpaint_color and paint_underpainting: camera rays at a fraction of the resolution, one
+// flat palette colour per hit (water mirroring), interpolated up and composited over the
+// background.
+#include "pipeline/frame/underpaint.h"
+
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -8,6 +11,7 @@
 
 #include "pipeline/frame/composite.h"
 #include "pipeline/frame/reflection.h"
+#include "pipeline/frame/surface_hit.h"
 #include "pipeline/shot/shot.h"
 
 namespace pleinair {
@@ -45,34 +49,11 @@ struct Underpainting {
 Color underpaint_color(const Shot& shot, const FrameView& view, const FramePlan& plan,
                        const RenderSettings& rs, const RayScene* sun_rays, const RayHit& h,
                        const glm::dvec3& world, glm::vec3 n, const glm::dvec3& dir) {
-    const SceneDesc& scene = shot.scene;
-    if (glm::dot(glm::dvec3(n), dir) > 0) n = -n;
-    const ViewSurface& vs = shot.view_surfaces[h.geometry];
-    const MaterialId mat =
-        vs.terrain ? shot.materials.surface(terrain_material_at(scene, world)) : vs.material;
-    const SpriteMaterial& m = shot.materials[mat];
-    const glm::vec3 sun(view.sun_direction);
-    const float n_dot_l = glm::dot(n, sun);
-    // A middle-depth stroke's lightness, a little darker: paint under paint.
-    float l = m.surface ? surface_lightness(*m.surface, n_dot_l, 0.5f) : clamp01(n_dot_l);
-    l *= 0.9f;
-    if (plan.shadows && sun_rays) {
-        const float sh = sun_light_at(*sun_rays, RayOrigin{world, n, true, 0.01f}, sun, rs.shadows);
-        if (sh < 1.0f) l *= shadow_remap(sh, m.shader->shadow_bias);
-    }
-    const Camera& cam = view.camera;
-    const float depth = static_cast<float>(glm::dot(world - cam.eye, cam.forward));
-    float d = 0;
-    if (plan.atmosphere)
-        d = distance_value(depth, scene.atmosphere.near_distance, scene.atmosphere.far_distance,
-                           m.shader->dist_curve_bias);
-    StrokeConstants k =
-        stroke_constants(*m.shader, n_dot_l, 0.5f, 0.5f, 0.5f, 0, 1.0f, d, 0.0f, false,
-                         plan.atmosphere && has_atmosphere_effect(*m.shader));
-    if (plan.reflections && !vs.terrain && mat == shot.materials.surface(scene.water.material))
+    SurfaceHit s = surface_hit(shot, view, plan, rs, sun_rays, h, world, n, dir);
+    if (plan.reflections && s.water)
         mirror(mirror_context(shot, view, plan, rs, sun_rays),
-               RayOrigin{world, n, true, shot.surface_lift}, &n, 1, n, dir, k);
-    return finish_color(k, palette_lookup(*m.palette, l));
+               RayOrigin{world, s.n, true, shot.surface_lift}, &s.n, 1, s.n, dir, s.k);
+    return finish_color(s.k, s.base);
 }
 
 namespace {
@@ -163,6 +144,15 @@ uint64_t paint_underpainting(const Shot& shot, const FrameView& view, const Fram
         }
     });
     return rays;
+}
+
+void underpaint_stage(const FrameContext& ctx, const RayScene* sun_rays, const StrokeLayer& strokes,
+                      Frame& frame) {
+    StagePhase phase(ctx, "underpaint", true);
+    ctx.report.underpaint_rays =
+        paint_underpainting(ctx.shot, ctx.view, ctx.plan, ctx.render(), sun_rays, strokes, frame);
+    phase.done("flat palette colour where the camera sees a surface and the strokes leave gaps",
+               std::to_string(ctx.report.underpaint_rays) + " camera rays");
 }
 
 }  // namespace pleinair

@@ -2,7 +2,8 @@
 // stretched over quads extruded from a mesh's silhouette edges, the control texture choosing
 // where and which row, the vector field the direction, and the paper's keyed blend colouring
 // them with the surface's colour. Plain data read by imposter_io.cpp from
-// presets/imposters/NAME.json, the atlas, and the drawing of one imposter into a patch.
+// presets/imposters/NAME.json; the shot draws the atlas (shot/imposter_atlas.h), the frame the
+// imposters (frame/imposter_draw.h).
 #pragma once
 
 #include <cstdint>
@@ -13,11 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/shot/graftal_draw.h"
+#include "pipeline/input/graftal_desc.h"
 
 namespace pleinair {
-
-struct Camera;
 
 // An RGBA image of floats, rows top to bottom (the control texture, the vector field, the colour
 // texture as a designer saved them; the atlas's levels, premultiplied).
@@ -28,17 +27,7 @@ struct ImposterImage {
     // Bilinear at (u, v) in [0, 1]^2 (v down the rows), u wrapping round (round a cylinder) or
     // clamped, v clamped.
     glm::vec4 sample(float u, float v, bool wrap_u = true) const;
-};
-
-// The texture atlas (file 002, figure 5.9.1): `rows` types of graftal imposter, `columns`
-// variations of each, every cell the same size. Premultiplied, and in the paper's key: red is
-// 1 inside a graftal (where the surface's colour shows), green and blue carry the outline's
-// colour (red 0), alpha its coverage. Levels halve down to a cell of 1 pixel, so a small
-// imposter reads an image its own size (no shimmer as it shrinks).
-struct ImposterAtlas {
-    int rows = 1, columns = 1;
-    int cell_w = 1, cell_h = 1;         // of level 0
-    std::vector<ImposterImage> levels;  // [0] full size
+    glm::vec4 texel(int x, int y) const { return pixels[static_cast<size_t>(y) * width + x]; }
 };
 
 // How a mesh's points get the texture coordinates the control, vector field and colour textures
@@ -77,41 +66,15 @@ struct ImposterDesc {
     // The colour texture: an image, or a gradient from `bottom` to `top` up v (sRGB as written).
     ImposterImage color;
     glm::vec3 bottom{0.25f, 0.3f, 0.12f}, top{0.45f, 0.55f, 0.22f};
-    std::shared_ptr<const ImposterAtlas> atlas;
+    // The atlas's sources, checked as the file is read; the shot draws the atlas from them
+    // (shot/imposter_atlas.h): graftal descriptions (a row each), or a designer's image.
+    std::vector<GraftalDesc> atlas_descs;
+    ImposterImage atlas_source;
     // As written, for messages and the reference (the atlas's source).
     std::vector<std::string> atlas_graftals;
     std::string atlas_image, control_image, field_image, color_image;
-    int atlas_rows = 1, atlas_columns = 4, atlas_cell_px = 64;
+    int atlas_rows = 1, atlas_columns = 4, atlas_cell_px = 64;  // rows: the descs' count
 };
-
-// An atlas drawn from graftal descriptions (the "atlas of graftal images"): row r from
-// descriptions[r], column c its example c mod count, varied by the description's ranges from a
-// fixed seed, seen face on, fills keyed red and outlines in (0, g, b).
-ImposterAtlas atlas_from_graftals(const std::vector<GraftalDesc>& descriptions, int columns,
-                                  int cell_px);
-// An atlas from a designer's image in the paper's format (straight alpha), cut into cells.
-ImposterAtlas atlas_from_image(const ImposterImage& image, int rows, int columns);
-
-// The paper's keyed blend for one atlas sample (premultiplied): the outline's (0, g, b) where
-// the key red is 0, the surface's colour where it is 1, between them in proportion; alpha kept.
-// Premultiplied linear RGB and alpha out.
-glm::vec4 keyed_blend(const glm::vec4& atlas_premultiplied, const glm::vec3& surface_linear);
-
-// One imposter as the frame draws it: the quad (base v0, v1 on the silhouette edge; tips
-// extruded from them) in the world, its atlas cell and the surface's colour at each end.
-struct ImposterQuad {
-    glm::dvec3 v0{0.0}, v1{0.0}, t0{0.0}, t1{0.0};
-    int row = 0, column = 0;
-    glm::vec3 color0{1.0f}, color1{1.0f};  // linear, shaded
-    float opacity = 1;
-};
-
-// The quad as `cam` sees it, textured from its atlas cell (trilinear between the two levels that
-// bracket its size on screen) and keyed, into an 8-bit premultiplied sRGB patch like a graftal's.
-// Empty when a corner lies behind the near plane or it misses the frame; `max_px` bounds the
-// patch's side. Pure: the same arguments give the same bytes on any thread.
-GraftalPatch draw_imposter(const ImposterAtlas& atlas, const ImposterQuad& q, const Camera& cam,
-                           int max_px = 2048);
 
 // Texture coordinates of a point of an object whose bounding box is [lo, hi].
 glm::vec2 imposter_uv(ImposterUv uv, const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi);

@@ -251,8 +251,8 @@ ImposterDesc parse_imposter(const std::string& text, const std::string& source,
         for (size_t i = 0; i < d.atlas_graftals.size(); ++i)
             descs.push_back(load_graftal(near_preset(d.atlas_graftals[i], source), source,
                                          "/atlas/graftals/" + std::to_string(i)));
-        d.atlas = std::make_shared<const ImposterAtlas>(
-            atlas_from_graftals(descs, d.atlas_columns, d.atlas_cell_px));
+        d.atlas_rows = static_cast<int>(descs.size());
+        d.atlas_descs = std::move(descs);
     } else {
         const ImposterImage img =
             read_imposter_image(near_file_path(d.atlas_image, source), source, "/atlas/image");
@@ -262,8 +262,7 @@ ImposterDesc parse_imposter(const std::string& text, const std::string& source,
                                  std::to_string(img.height) + " cannot hold " +
                                  std::to_string(d.atlas_rows) + " x " +
                                  std::to_string(d.atlas_columns) + " cells");
-        d.atlas = std::make_shared<const ImposterAtlas>(
-            atlas_from_image(img, d.atlas_rows, d.atlas_columns));
+        d.atlas_source = img;
     }
     if (!d.control_image.empty())
         d.control =

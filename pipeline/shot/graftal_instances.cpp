@@ -160,4 +160,75 @@ std::vector<GraftalInstance> grow_tufts(const GraftalDesc& desc,
     return out;
 }
 
+namespace {
+
+// Fixed: a site's key and its object already tell every tuft apart.
+constexpr uint64_t kGraftalSeed = 0x6772616674616cull;  // "graftal"
+
+ShotGraftals group_of(std::shared_ptr<const GraftalDesc> desc, std::vector<GraftalSite> sites) {
+    ShotGraftals g;
+    g.desc = std::move(desc);
+    g.sites = std::move(sites);
+    g.instances = grow_tufts(*g.desc, g.sites, kGraftalSeed);
+    g.first.assign(g.sites.size() + 1, 0);
+    // grow_tufts lists each site's graftals together, in site order.
+    for (const GraftalInstance& i : g.instances) ++g.first[i.tuft + 1];
+    for (size_t s = 0; s < g.sites.size(); ++s) g.first[s + 1] += g.first[s];
+    return g;
+}
+
+}  // namespace
+
+std::vector<ShotGraftals> build_graftals(const SceneDesc& scene,
+                                         const std::vector<BuiltTree>& trees,
+                                         const std::vector<TreePlacement>& placements,
+                                         const BuiltLandscape& land) {
+    std::vector<ShotGraftals> out;
+    for (size_t i = 0; i < trees.size(); ++i) {
+        const BuiltTree& b = trees[i];
+        const Family& fam = scene.families[b.family];
+        if (!fam.graftal) continue;
+        const LeafParticles& L = b.tree.leaves;
+        const TreePlacement& pl = placements[i];
+        std::vector<glm::dvec3> world(L.size());
+        std::vector<glm::vec3> normals(L.size());
+        for (size_t j = 0; j < L.size(); ++j)
+            world[j] = pl.place(L.position[j]), normals[j] = pl.turn(L.normal[j]);
+        GraftalDesc scaled = *fam.graftal;
+        scaled.length *= static_cast<float>(b.scale);  // a tree's graftals grow with it
+        out.push_back(
+            group_of(std::make_shared<const GraftalDesc>(std::move(scaled)),
+                     leaf_sites(*fam.graftal, world, normals, kGraftalSeed, b.tree.id + 1)));
+    }
+    for (size_t m = 0; m < scene.materials.size(); ++m) {
+        const auto& desc = scene.materials[m].graftal;
+        if (!desc) continue;
+        const uint32_t object = 0x10000u + static_cast<uint32_t>(m);
+        std::vector<GraftalSite> sites;
+        // The difference image chooses among candidates at the description's density.
+        GraftalDesc candidates = *desc;
+        if (candidates.placement == GraftalPlacement::kDifference)
+            candidates.placement = GraftalPlacement::kDensity;
+        if (land.has_terrain) {
+            for (const GraftalSite& s :
+                 mesh_sites(candidates, land.terrain_mesh, kGraftalSeed, object)) {
+                if (terrain_material_at(scene, s.position) != m) continue;
+                if (land.has_water && s.position.y <= scene.water.level) continue;
+                sites.push_back(s);
+            }
+        }
+        for (size_t r = 0; r < scene.rocks.size() && r < land.rocks.size(); ++r) {
+            if (scene.rocks[r].material != m) continue;
+            // Keys apart from the terrain's: a rock's sites are numbered from 2^40 x (r + 1).
+            for (GraftalSite s :
+                 mesh_sites(candidates, land.rocks[r], kGraftalSeed + r + 1, object)) {
+                s.key += (uint64_t(r) + 1) << 40;
+                sites.push_back(s);
+            }
+        }
+        if (!sites.empty()) out.push_back(group_of(desc, std::move(sites)));
+    }
+    return out;
+}
+
 }  // namespace pleinair

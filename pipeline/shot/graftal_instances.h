@@ -12,6 +12,9 @@
 
 #include "generators/quad_mesh.h"
 #include "pipeline/input/graftal_desc.h"
+#include "pipeline/input/scene.h"
+#include "pipeline/shot/built_trees.h"
+#include "pipeline/shot/landscape.h"
 
 namespace pleinair {
 
@@ -73,5 +76,14 @@ struct ShotGraftals {
     std::vector<GraftalInstance> instances;  // by tuft, in site order
     std::vector<uint32_t> first;             // per site, its first instance; sites + 1 entries
 };
+
+// Once per shot: the graftals of every family whose style is a graftal description (at its
+// trees' leaf particles) and of every such material (on the terrain where the terrain has that
+// material, above any water, and on the rocks made of it), sites and tufts keyed so that a
+// tree or a face keeps its graftals whatever else the scene holds.
+std::vector<ShotGraftals> build_graftals(const SceneDesc& scene,
+                                         const std::vector<BuiltTree>& trees,
+                                         const std::vector<TreePlacement>& placements,
+                                         const BuiltLandscape& land);
 
 }  // namespace pleinair

@@ -10,17 +10,12 @@
 #include <glm/geometric.hpp>
 #include <limits>
 
-#include "pipeline/frame/graftal_stage.h"
 #include "shading/pigment.h"
 #include "shading/portable_math.h"
 
 namespace pleinair {
 
 namespace {
-
-glm::dvec3 rotate_y(const glm::dvec3& v, double c, double s) {
-    return {c * v.x + s * v.z, v.y, -s * v.x + c * v.z};
-}
 
 ShotPlan plan_shot(const SceneDesc& scene, const ShotOptions& options) {
     ShotPlan plan;
@@ -70,24 +65,6 @@ std::vector<std::vector<float>> trace_sun_light(const Shot& shot) {
 
 }  // namespace
 
-TreePlacement placement(const BuiltTree& b) {
-    return {pmath::cos(b.rotation * M_PI / 180.0), pmath::sin(b.rotation * M_PI / 180.0), b.scale,
-            b.position};
-}
-
-glm::dvec3 TreePlacement::place(const glm::vec3& p) const {
-    return position + rotate_y(glm::dvec3(p) * scale, c, s);
-}
-
-glm::vec3 TreePlacement::turn(const glm::vec3& v) const {
-    return glm::vec3(rotate_y(glm::dvec3(v), c, s));
-}
-
-glm::dmat3 TreePlacement::linear() const {
-    return glm::dmat3(glm::dvec3(c, 0, -s) * scale, glm::dvec3(0, scale, 0),
-                      glm::dvec3(s, 0, c) * scale);
-}
-
 std::vector<StrokeCaster> leaf_casters(const SceneDesc& scene, const BuiltTree& b,
                                        const glm::vec3& sun) {
     std::vector<StrokeCaster> out(b.tree.leaves.size());
@@ -119,40 +96,6 @@ void leaf_casters(const SceneDesc& scene, const BuiltTree& b, const glm::vec3& s
                                             L.center_distance[j], L.branch_distance[j], L.label[j],
                                             L.tree_id[j], 1.0f, 0.0f, 0.0f, false, false));
     }
-}
-
-double tree_stroke_width(const Family& family, const StrokeShaderParams& shader, double scale) {
-    return shader.sprite_size * family.params.unit * scale;
-}
-
-BarkParticles family_bark(const Family& family, const Tree& tree, float coverage, uint64_t seed) {
-    BarkOptions bo;
-    bo.stroke_width = static_cast<float>(tree_stroke_width(family, family.bark_shader, 1.0));
-    bo.stroke_length = bo.stroke_width * family.bark_shader.stroke_aspect;
-    bo.coverage = coverage;
-    return emit_bark(tree, bo, seed);
-}
-
-std::vector<BuiltTree> build_trees(const SceneDesc& scene, bool bark) {
-    std::vector<BuiltTree> out(scene.trees.size());
-    tbb::parallel_for(size_t{0}, scene.trees.size(), [&](size_t i) {
-        const PlacedTree& t = scene.trees[i];
-        const Family& f = scene.families[t.family];
-        TreeOptions o;
-        o.tree_id = static_cast<uint32_t>(i);
-        o.lod = false;
-        BuiltTree& b = out[i];
-        b.tree = generate_tree(f.params, t.seed, o);
-        b.family = t.family;
-        b.position = t.position;
-        // Catmull-Clark rounds the trunk's base into a dome: plant the tree deep enough that
-        // the ground meets the trunk at its full width.
-        b.position.y -= b.tree.planting_depth * t.scale;
-        b.rotation = t.rotation;
-        b.scale = t.scale;
-        if (bark) b.bark = family_bark(f, b.tree, scene.build.bark_coverage, t.seed);
-    });
-    return out;
 }
 
 float sun_light_at(const RayScene& sun_rays, const RayOrigin& o, const glm::vec3& sun,
@@ -234,7 +177,7 @@ Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> t
         std::any_of(shot.scene.materials.begin(), shot.scene.materials.end(),
                     [](const Material& m) { return m.graftal != nullptr; })) {
         PassTimer timer;
-        shot.graftals = build_graftals(shot);
+        shot.graftals = build_graftals(shot.scene, *shot.trees, shot.placements, *shot.land);
         size_t tufts = 0, graftals = 0;
         for (const ShotGraftals& g : shot.graftals)
             tufts += g.sites.size(), graftals += g.instances.size();
@@ -248,7 +191,7 @@ Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> t
         std::any_of(shot.scene.materials.begin(), shot.scene.materials.end(),
                     [](const Material& m) { return m.imposters != nullptr; })) {
         PassTimer timer;
-        shot.imposters = build_imposters(shot);
+        shot.imposters = build_imposters(shot.scene, *shot.trees, shot.placements, *shot.land);
         size_t edges = 0;
         for (const ImposterObject& o : shot.imposters) edges += o.edges.size();
         shot.passes.push_back({"imposters", true,

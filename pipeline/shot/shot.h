@@ -7,48 +7,17 @@
 #include <memory>
 #include <vector>
 
-#include "generators/bark.h"
-#include "generators/tree.h"
+#include "pipeline/input/scene.h"
+#include "pipeline/shot/built_trees.h"
 #include "pipeline/shot/graftal_instances.h"
-#include "pipeline/frame/imposter_stage.h"
+#include "pipeline/shot/imposter_objects.h"
 #include "pipeline/shot/landscape.h"
 #include "pipeline/shot/materials.h"
-#include "pipeline/shot/rays.h"
 #include "pipeline/shot/pass_report.h"
-#include "pipeline/input/scene.h"
-#include "pipeline/frame/sky_sprites.h"
+#include "pipeline/shot/rays.h"
+#include "pipeline/shot/sky_strokes.h"
 
 namespace pleinair {
-
-struct BuiltTree {
-    Tree tree;  // tree-local geometry; the transform below places it
-    BarkParticles bark;
-    uint32_t family = 0;
-    glm::dvec3 position{0.0};
-    double rotation = 0;  // about +y, degrees
-    double scale = 1;
-};
-
-// A tree's placement in the world: rotation about +y and scale, then its position (in double).
-struct TreePlacement {
-    double c = 1, s = 0, scale = 1;
-    glm::dvec3 position{0.0};
-    glm::dvec3 place(const glm::vec3& tree_local) const;
-    glm::vec3 turn(const glm::vec3& direction) const;
-    glm::dmat3 linear() const;  // place(p) = position + linear() * p
-};
-TreePlacement placement(const BuiltTree& tree);
-
-// A stroke's world width on a tree of `family`: the shader's sprite_size in the tree's units,
-// times the tree's scale. Leaves, bark strokes and the leaves' shadow casters agree through it.
-double tree_stroke_width(const Family& family, const StrokeShaderParams& shader, double scale);
-
-// The bark strokes of a tree of `family` (its bark shader's size and aspect) at a coverage.
-BarkParticles family_bark(const Family& family, const Tree& tree, float coverage, uint64_t seed);
-
-// Generates every tree of the scene (in parallel; the result does not depend on threads), with
-// bark strokes when `bark`.
-std::vector<BuiltTree> build_trees(const SceneDesc& scene, bool bark = true);
 
 // The tree's leaf strokes as shadow casters: cards facing the sun, sized and turned like the
 // strokes, with the same noise (IV.4.2).
@@ -156,6 +125,29 @@ float sun_light_at(const RayScene& sun_rays, const RayOrigin& origin, const glm:
 template <class Fn>
 void for_each_particle(const Shot& shot, size_t item, Fn&& fn);
 
-}  // namespace pleinair
+template <class Fn>
+void for_each_particle(const Shot& shot, size_t item, Fn&& fn) {
+    const std::vector<BuiltTree>& trees = *shot.trees;
+    if (item >= trees.size()) {
+        const SurfaceParticles& S = shot.land->chunks[item - trees.size()];
+        for (size_t j = 0; j < S.size(); ++j)
+            fn(SpriteKind::kSurface, j,
+               RayOrigin{glm::dvec3(S.position[j]), S.normal(j), true, shot.surface_lift});
+        return;
+    }
+    const BuiltTree& b = trees[item];
+    const TreePlacement& pl = shot.placements[item];
+    if (shot.plan.bark) {
+        const BarkParticles& B = b.bark;
+        const float lift =
+            static_cast<float>(0.02 * shot.scene.families[b.family].params.unit * b.scale);
+        for (size_t j = 0; j < B.size(); ++j)
+            fn(SpriteKind::kBark, j,
+               RayOrigin{pl.place(B.position[j]), pl.turn(B.normal[j]), true, lift});
+    }
+    const LeafParticles& L = b.tree.leaves;
+    for (size_t j = 0; j < L.size(); ++j)
+        fn(SpriteKind::kLeaf, j, RayOrigin{pl.place(L.position[j]), glm::vec3(0.0f), false, 0.0f});
+}
 
-#include "pipeline/shot/shot_particles.h"
+}  // namespace pleinair

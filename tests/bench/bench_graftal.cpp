@@ -9,13 +9,13 @@
 
 #include <string>
 
-#include "pipeline/shot/graftal_draw.h"
-#include "pipeline/input/graftal_io.h"
 #include "pipeline/frame/graftal_stage.h"
-#include "pipeline/input/imposter_io.h"
 #include "pipeline/frame/imposter_stage.h"
 #include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/graftal_io.h"
+#include "pipeline/input/imposter_io.h"
 #include "pipeline/input/presets.h"
+#include "pipeline/shot/graftal_draw.h"
 #include "pipeline/shot/shot.h"
 
 using namespace pleinair;
@@ -128,6 +128,7 @@ BENCHMARK(BM_Frame)->DenseRange(0, 6)->Unit(benchmark::kMillisecond)->UseRealTim
 // its exact coverage, each pixel's centre inverted into its cell, two atlas levels read, keyed.
 void BM_ImposterDraw(benchmark::State& state) {
     const ImposterDesc d = load_imposter("seuss-fringe");
+    const ImposterAtlas atlas = imposter_atlas(d);
     const Camera cam = facing_camera();
     const double half = 0.5 * double(state.range(0)) * 10.0 / cam.focal_px;
     ImposterQuad q;
@@ -137,8 +138,8 @@ void BM_ImposterDraw(benchmark::State& state) {
     size_t pixels = 0;
     int column = 0;
     for (auto _ : state) {
-        q.column = column++ % d.atlas->columns;
-        const GraftalPatch p = draw_imposter(*d.atlas, q, cam);
+        q.column = column++ % atlas.columns;
+        const GraftalPatch p = draw_imposter(atlas, q, cam);
         pixels = p.pixels.size();
         benchmark::DoNotOptimize(p.pixels.data());
     }

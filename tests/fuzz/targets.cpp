@@ -8,14 +8,15 @@
 #include <string>
 #include <vector>
 
+#include "pipeline/frame/imposter_draw.h"
 #include "pipeline/input/error.h"
 #include "pipeline/input/graftal_io.h"
-#include "pipeline/shot/graftal_lod.h"
 #include "pipeline/input/imposter_io.h"
 #include "pipeline/input/json_params.h"
 #include "pipeline/input/particle_files.h"
 #include "pipeline/input/scene.h"
 #include "pipeline/input/shader_io.h"
+#include "pipeline/shot/graftal_lod.h"
 
 namespace pleinair::fuzz {
 
@@ -189,8 +190,8 @@ int imposter(const uint8_t* data, size_t size) {
         const ImposterDesc d = parse_imposter(text(data, size), "fuzz.json");
         // Accepted: an atlas of whole cells, control rows it has, and one imposter of every
         // cell drawn without a crash.
-        if (!d.atlas || d.atlas->levels.empty()) finding("imposter", "no atlas");
-        const ImposterAtlas& a = *d.atlas;
+        const ImposterAtlas a = imposter_atlas(d);
+        if (a.levels.empty()) finding("imposter", "no atlas");
         if (a.levels[0].width != a.columns * a.cell_w || a.levels[0].height != a.rows * a.cell_h)
             finding("imposter", "an atlas of broken cells");
         for (int r : d.rows)

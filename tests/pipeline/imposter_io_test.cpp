@@ -10,6 +10,7 @@
 
 #include "pipeline/input/error.h"
 #include "pipeline/input/presets.h"
+#include "pipeline/shot/imposter_atlas.h"
 #include "test_util.h"
 
 namespace pleinair {
@@ -34,13 +35,13 @@ TEST(ImposterFiles, TheShippedOnesLoadWithTheirAtlases) {
     for (const std::string& name : names) {
         SCOPED_TRACE(name);
         const ImposterDesc d = load_imposter(name);
-        ASSERT_TRUE(d.atlas);
-        EXPECT_EQ(d.atlas->rows, static_cast<int>(d.atlas_graftals.size()));
+        const ImposterAtlas atlas = imposter_atlas(d);
+        EXPECT_EQ(atlas.rows, static_cast<int>(d.atlas_graftals.size()));
         EXPECT_FALSE(d.description.empty());
     }
     const ImposterDesc s = load_imposter("seuss-fringe");
     EXPECT_EQ(s.rows, (std::vector<int>{-1, 0, 0, 0, 1}));
-    EXPECT_EQ(s.atlas->columns, 4);
+    EXPECT_EQ(imposter_atlas(s).columns, 4);
 }
 
 TEST(ImposterFiles, BrokenFilesNameTheirKey) {
@@ -94,10 +95,10 @@ TEST(ImposterFiles, ImagesAreReadNearTheFile) {
     std::ofstream(dir / "fur.json") << R"({"atlas": {"image": "atlas.png", "columns": 2},
         "control": {"image": "control.png"}})";
     const ImposterDesc d = load_imposter((dir / "fur.json").string());
-    ASSERT_TRUE(d.atlas);
-    EXPECT_EQ(d.atlas->columns, 2);
-    EXPECT_EQ(d.atlas->cell_w, 2);
-    EXPECT_EQ(d.atlas->cell_h, 2);
+    const ImposterAtlas drawn = imposter_atlas(d);
+    EXPECT_EQ(drawn.columns, 2);
+    EXPECT_EQ(drawn.cell_w, 2);
+    EXPECT_EQ(drawn.cell_h, 2);
     EXPECT_EQ(d.control.width, 2);
     EXPECT_EQ(control_row(d, {0.5f, 0.5f}), 1);  // green: the second row
     // Cells that do not fit the image.

@@ -12,8 +12,8 @@
 #include <set>
 
 #include "generators/rock.h"
-#include "pipeline/input/camera.h"
 #include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/camera.h"
 #include "pipeline/input/presets.h"
 #include "pipeline/shot/shot.h"
 #include "test_util.h"
@@ -26,7 +26,8 @@ std::shared_ptr<ImposterDesc> plain_desc() {
     ImposterImage img;
     img.width = img.height = 4;
     img.pixels.assign(16, glm::vec4(1, 0, 0, 1));
-    d->atlas = std::make_shared<const ImposterAtlas>(atlas_from_image(img, 1, 4));
+    d->atlas_source = img;
+    d->atlas_rows = 1, d->atlas_columns = 4;
     d->min_edge_px = 0;
     d->fade = 0;
     return d;

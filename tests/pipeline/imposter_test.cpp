@@ -1,14 +1,14 @@
 // Graftal imposters drawn (file 002): the keyed blend's three cases, an atlas drawn from graftal
 // descriptions (cells standing on their base, empty at their borders, levels keeping their
 // coverage), and a quad inverted into its cell: its area, its orientation, its colour across it.
-#include "pipeline/input/imposter_desc.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "pipeline/frame/imposter_draw.h"
 #include "pipeline/input/camera.h"
 #include "pipeline/input/graftal_io.h"
+#include "pipeline/input/imposter_desc.h"
 
 namespace pleinair {
 namespace {

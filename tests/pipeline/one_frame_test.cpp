@@ -138,6 +138,47 @@ TEST_F(OneFrame, RenderAndAnimatePaintTheSamePixelsForEveryShippedShot) {
             ASSERT_EQ(a.size(), size_t{kWidth} * kHeight * 3);
             EXPECT_EQ(differing_pixels(a, b), 0u) << "render --frame and animate differ";
         }
+        // --preview halves the size alike in both commands.
+        const std::string preview = frame_name(dir, "p_", middle, "png");
+        r = run_pleinair("render " + s.name + " --preview --frame " + std::to_string(middle) +
+                         " -o " + preview + " --set /camera/width=" + std::to_string(2 * kWidth) +
+                         " --set /camera/height=" + std::to_string(2 * kHeight));
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        EXPECT_EQ(
+            differing_pixels(read_rgb8(preview), read_rgb8(frame_name(dir, "a_", middle, "png"))),
+            0u)
+            << "render --preview";
+    }
+    EXPECT_GE(shots, 5);
+}
+
+// The benches measure the frames the user's commands paint: `bench look --frame N --save` and
+// `bench coherence --frames N --save` write the frame they measured, and it is render's and
+// animate's, pixel for pixel, for the middle frame of every shipped shot.
+TEST_F(OneFrame, BenchesMeasureTheFramesRenderAndAnimatePaint) {
+    int shots = 0;
+    for (const ShippedScene& s : shipped_scenes()) {
+        if (!s.animated) continue;
+        SCOPED_TRACE(s.name);
+        ++shots;
+        const FrameRange all = animation_frames(load_scene(s.file));
+        const int f = all.first + (all.last - all.first) / 2;
+        const fs::path dir = dir_ / s.name;
+        const std::string frame = " --frame " + std::to_string(f);
+        auto r =
+            run_pleinair("render " + s.name + frame + " -o " + (dir / "r.png").string() + kSize);
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        r = run_pleinair("bench look " + s.name + frame + " --save " + (dir / "l.png").string() +
+                         kSize);
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        r = run_pleinair("bench coherence " + s.name + " --frames " + std::to_string(f) +
+                         " --save " + (dir / "c_####.png").string() + kSize);
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        const std::vector<uint8_t> rendered = read_rgb8(dir / "r.png");
+        ASSERT_EQ(rendered.size(), size_t{kWidth} * kHeight * 3);
+        EXPECT_EQ(differing_pixels(read_rgb8(dir / "l.png"), rendered), 0u) << "bench look";
+        EXPECT_EQ(differing_pixels(read_rgb8(frame_name(dir, "c_", f, "png")), rendered), 0u)
+            << "bench coherence";
     }
     EXPECT_GE(shots, 5);
 }

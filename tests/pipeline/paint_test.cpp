@@ -2,8 +2,6 @@
 // cases of the issue (particles at or behind the camera, huge and zero-size sprites, a limb seen
 // end-on, one-colour palettes, equal feather thresholds, an empty scene, a camera looking
 // straight up or down).
-#include "pipeline/frame/paint_frame.h"
-
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
@@ -14,9 +12,11 @@
 #include <glm/geometric.hpp>
 #include <limits>
 
+#include "pipeline/frame/background.h"
 #include "pipeline/frame/composite.h"
-#include "pipeline/output/image_io.h"
+#include "pipeline/frame/paint_frame.h"
 #include "pipeline/frame/sprites.h"
+#include "pipeline/output/image_io.h"
 #include "test_util.h"
 
 namespace pleinair {

@@ -13,12 +13,14 @@
 #include <set>
 #include <unordered_set>
 
-#include "pipeline/frame/tile_bins.h"
+#include "pipeline/frame/background.h"
 #include "pipeline/frame/composite.h"
-#include "pipeline/output/image_io.h"
 #include "pipeline/frame/paint_frame.h"
-#include "pipeline/shot/rays.h"
 #include "pipeline/frame/sprites.h"
+#include "pipeline/frame/tile_bins.h"
+#include "pipeline/frame/underpaint.h"
+#include "pipeline/output/image_io.h"
+#include "pipeline/shot/rays.h"
 
 namespace pleinair {
 namespace {

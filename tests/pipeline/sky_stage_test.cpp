@@ -1,17 +1,17 @@
-// The painted sky's stage (pipeline/frame/sky_sprites.h): its strokes follow the camera's rotation and never
-// its translation, stay on the sky side of the horizon, and are planned only when asked for.
-#include "pipeline/frame/sky_sprites.h"
-
+// The painted sky's stage (pipeline/frame/sky_sprites.h): its strokes follow the camera's rotation
+// and never its translation, stay on the sky side of the horizon, and are planned only when asked
+// for.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
 #include <glm/geometric.hpp>
 
-#include "pipeline/input/error.h"
-#include "pipeline/output/image_io.h"
 #include "pipeline/bench/look_measures.h"
 #include "pipeline/frame/paint_frame.h"
+#include "pipeline/frame/sky_sprites.h"
+#include "pipeline/input/error.h"
+#include "pipeline/output/image_io.h"
 #include "pipeline/shot/shot.h"
 
 namespace pleinair {
@@ -172,8 +172,8 @@ TEST(SkyStage, BadKeysNameTheKey) {
 namespace pleinair {
 namespace {
 
-// The look's measures (look_measures.h) on the small Mortefontaine with and without its painted sky:
-// the sky carries brush texture at the scale of its strokes, and no bands in 8 bits.
+// The look's measures (look_measures.h) on the small Mortefontaine with and without its painted
+// sky: the sky carries brush texture at the scale of its strokes, and no bands in 8 bits.
 TEST(SkyStage, BrushesTheSkyWithoutBanding) {
     const auto file = PLEINAIR_SOURCE_DIR "/tests/golden/mortefontaine-sky/scene.json";
     auto measure = [&](bool sky, double& run) {

@@ -1,0 +1,36 @@
+// The underpainting stage of a frame: a flat palette colour where the camera sees a surface and
+// the strokes leave gaps, at a fraction of the resolution.
+#pragma once
+
+#include <cstdint>
+
+#include "pipeline/frame/composite.h"
+#include "pipeline/frame/frame_context.h"
+#include "pipeline/frame/frame_view.h"
+#include "pipeline/shot/rays.h"
+
+namespace pleinair {
+
+struct Shot;
+
+// The flat palette colour the underpainting gives a camera-scene hit `h` at `world` (normal n,
+// seen along dir): its material's palette at a middle-depth stroke's lightness, in the sun's
+// light and shadow, pushed into the distance when the plan has atmosphere; water mirrors what
+// it reflects when the plan has reflections.
+Color underpaint_color(const Shot& shot, const FrameView& view, const FramePlan& plan,
+                       const RenderSettings& settings, const RayScene* sun_rays, const RayHit& h,
+                       const glm::dvec3& world, glm::vec3 n, const glm::dvec3& dir);
+
+// A flat palette colour and a depth where the camera sees terrain, water, rocks or trunks, at
+// underpaint_scale of the resolution, so no sky shows between strokes, over the background.
+// Coverage is interpolated, so silhouettes stay soft. Only cells under pixels the strokes leave
+// open are traced (all of them when the AOVs ask for depth). Returns the camera rays traced.
+uint64_t paint_underpainting(const Shot& shot, const FrameView& view, const FramePlan& plan,
+                             const RenderSettings& settings, const RayScene* sun_rays,
+                             const StrokeLayer& strokes, Frame& frame);
+
+// The underpainting stage: paint_underpainting, its camera rays in the report.
+void underpaint_stage(const FrameContext& ctx, const RayScene* sun_rays, const StrokeLayer& strokes,
+                      Frame& frame);
+
+}  // namespace pleinair

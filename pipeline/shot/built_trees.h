@@ -1,0 +1,47 @@
+// The scene's trees as grown, before the shot: each tree's geometry and bark strokes with where
+// it stands (BuiltTree), and the placement that takes tree-local points into the world. The
+// shot and its once-per-shot builders (graftals, imposters) read them.
+#pragma once
+
+#include <cstdint>
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+#include <vector>
+
+#include "generators/bark.h"
+#include "generators/tree.h"
+#include "pipeline/input/scene.h"
+
+namespace pleinair {
+
+struct BuiltTree {
+    Tree tree;  // tree-local geometry; the transform below places it
+    BarkParticles bark;
+    uint32_t family = 0;
+    glm::dvec3 position{0.0};
+    double rotation = 0;  // about +y, degrees
+    double scale = 1;
+};
+
+// A tree's placement in the world: rotation about +y and scale, then its position (in double).
+struct TreePlacement {
+    double c = 1, s = 0, scale = 1;
+    glm::dvec3 position{0.0};
+    glm::dvec3 place(const glm::vec3& tree_local) const;
+    glm::vec3 turn(const glm::vec3& direction) const;
+    glm::dmat3 linear() const;  // place(p) = position + linear() * p
+};
+TreePlacement placement(const BuiltTree& tree);
+
+// A stroke's world width on a tree of `family`: the shader's sprite_size in the tree's units,
+// times the tree's scale. Leaves, bark strokes and the leaves' shadow casters agree through it.
+double tree_stroke_width(const Family& family, const StrokeShaderParams& shader, double scale);
+
+// The bark strokes of a tree of `family` (its bark shader's size and aspect) at a coverage.
+BarkParticles family_bark(const Family& family, const Tree& tree, float coverage, uint64_t seed);
+
+// Generates every tree of the scene (in parallel; the result does not depend on threads), with
+// bark strokes when `bark`.
+std::vector<BuiltTree> build_trees(const SceneDesc& scene, bool bark = true);
+
+}  // namespace pleinair
