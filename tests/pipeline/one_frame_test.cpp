@@ -29,6 +29,7 @@ struct ShippedScene {
     std::string name;
     fs::path file;
     bool animated = false;
+    FrameRange frames;  // its track's (frame 1 alone for a still)
 };
 
 // Every scene in presets/scenes: a new one joins these tests by being shipped.
@@ -36,10 +37,20 @@ std::vector<ShippedScene> shipped_scenes() {
     std::vector<ShippedScene> out;
     for (const auto& e : fs::directory_iterator(test::source_dir() / "presets" / "scenes")) {
         if (e.path().extension() != ".json") continue;
-        out.push_back({e.path().stem().string(), e.path(), load_scene(e.path()).animated()});
+        const SceneDesc scene = load_scene(e.path());
+        out.push_back(
+            {e.path().stem().string(), e.path(), scene.animated(), animation_frames(scene)});
     }
     std::sort(out.begin(), out.end(),
               [](const ShippedScene& a, const ShippedScene& b) { return a.name < b.name; });
+    return out;
+}
+
+// The shipped scenes with a track.
+std::vector<ShippedScene> shipped_shots() {
+    std::vector<ShippedScene> out = shipped_scenes();
+    out.erase(std::remove_if(out.begin(), out.end(), [](const auto& s) { return !s.animated; }),
+              out.end());
     return out;
 }
 
@@ -106,12 +117,10 @@ class OneFrame : public ::testing::Test {
 // materials still pointed into the one it was moved from, so its sky was painted from freed
 // memory; render, whose shot never moved, painted it right. Nothing compared the two.
 TEST_F(OneFrame, RenderAndAnimatePaintTheSamePixelsForEveryShippedShot) {
-    int shots = 0;
-    for (const ShippedScene& s : shipped_scenes()) {
-        if (!s.animated) continue;
+    const std::vector<ShippedScene> shots = shipped_shots();
+    for (const ShippedScene& s : shots) {
         SCOPED_TRACE(s.name);
-        ++shots;
-        const FrameRange all = animation_frames(load_scene(s.file));
+        const FrameRange& all = s.frames;
         const int first = all.first, last = all.last, step = std::max(1, (last - first) / 2);
         const int middle = std::min(last, first + step);
         const fs::path dir = dir_ / s.name;
@@ -149,19 +158,17 @@ TEST_F(OneFrame, RenderAndAnimatePaintTheSamePixelsForEveryShippedShot) {
             0u)
             << "render --preview";
     }
-    EXPECT_GE(shots, 5);
+    EXPECT_GE(shots.size(), 5u);
 }
 
 // The benches measure the frames the user's commands paint: `bench look --frame N --save` and
 // `bench coherence --frames N --save` write the frame they measured, and it is render's and
 // animate's, pixel for pixel, for the middle frame of every shipped shot.
 TEST_F(OneFrame, BenchesMeasureTheFramesRenderAndAnimatePaint) {
-    int shots = 0;
-    for (const ShippedScene& s : shipped_scenes()) {
-        if (!s.animated) continue;
+    const std::vector<ShippedScene> shots = shipped_shots();
+    for (const ShippedScene& s : shots) {
         SCOPED_TRACE(s.name);
-        ++shots;
-        const FrameRange all = animation_frames(load_scene(s.file));
+        const FrameRange& all = s.frames;
         const int f = all.first + (all.last - all.first) / 2;
         const fs::path dir = dir_ / s.name;
         const std::string frame = " --frame " + std::to_string(f);
@@ -180,7 +187,7 @@ TEST_F(OneFrame, BenchesMeasureTheFramesRenderAndAnimatePaint) {
         EXPECT_EQ(differing_pixels(read_rgb8(frame_name(dir, "c_", f, "png")), rendered), 0u)
             << "bench coherence";
     }
-    EXPECT_GE(shots, 5);
+    EXPECT_GE(shots.size(), 5u);
 }
 
 // The shortcuts one path takes give what another computes: a shot moved to the heap (animate),
