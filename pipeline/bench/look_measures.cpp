@@ -87,11 +87,10 @@ namespace {
 
 // No stroke more than half opaque in front, no surface, the ray above the horizon; and at most
 // `max_alpha` of strokes' paint over it (the thin edges of a crown have no id of their own).
-bool is_open_sky(const Camera& cam, const Frame& f, int x, int y, float max_alpha = 1.0f) {
-    const size_t i = static_cast<size_t>(y) * f.width + x;
+// `d`: the camera ray through pixel i.
+bool is_open_sky(const Frame& f, size_t i, const glm::dvec3& d, float max_alpha = 1.0f) {
     if (f.object_id[i] != 0.0f || f.depth[i] != std::numeric_limits<float>::max()) return false;
-    if (!(f.alpha[i] <= max_alpha)) return false;
-    return ray_direction(cam, x + 0.5, y + 0.5).y > 0.02;
+    return f.alpha[i] <= max_alpha && d.y > 0.02;
 }
 
 }  // namespace
@@ -101,7 +100,9 @@ std::vector<uint8_t> sky_region(const Camera& camera, const Frame& f) {
     if (!f.has_aovs) return sky;
     tbb::parallel_for(0, f.height, [&](int y) {
         for (int x = 0; x < f.width; ++x)
-            sky[static_cast<size_t>(y) * f.width + x] = is_open_sky(camera, f, x, y, 0.02f);
+            sky[static_cast<size_t>(y) * f.width + x] =
+                is_open_sky(f, static_cast<size_t>(y) * f.width + x,
+                            ray_direction(camera, x + 0.5, y + 0.5), 0.02f);
     });
     return sky;
 }
@@ -153,10 +154,10 @@ LookRegions look_regions(const Shot& shot, const FrameView& view, const Frame& f
             const size_t i = static_cast<size_t>(y) * f.width + x;
             const float id = f.object_id[i];
             r.trees[i] = id >= 1.0f && id < 65536.0f;
-            r.sky[i] = is_open_sky(cam, f, x, y);
+            const glm::dvec3 d = ray_direction(cam, x + 0.5, y + 0.5);
+            r.sky[i] = is_open_sky(f, i, d);
             if (!water) continue;
-            const RayHit h =
-                shot.view_rays->intersect(cam.eye, glm::vec3(ray_direction(cam, x + 0.5, y + 0.5)));
+            const RayHit h = shot.view_rays->intersect(cam.eye, glm::vec3(d));
             if (!h.hit) continue;
             const ViewSurface& vs = shot.view_surfaces[h.geometry];
             r.water[i] = !vs.terrain && vs.material == water_mat;

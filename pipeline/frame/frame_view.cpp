@@ -10,8 +10,12 @@
 
 namespace pleinair {
 
+std::string track_camera(const SceneDesc& scene, const CameraKey& key, Camera& out) {
+    return make_camera(camera_of(key, scene.camera_params), out);
+}
+
 std::string track_camera(const SceneDesc& scene, double t, Camera& out) {
-    return make_camera(camera_of(track_at(scene.camera_track, t), scene.camera_params), out);
+    return track_camera(scene, track_at(scene.camera_track, t), out);
 }
 
 FrameView still_view(const SceneDesc& scene) {
@@ -21,9 +25,10 @@ FrameView still_view(const SceneDesc& scene) {
 FrameView view_at(const SceneDesc& scene, double t) {
     FrameView v = still_view(scene);
     if (!scene.camera_track.keys.empty()) {
-        if (std::string why = track_camera(scene, t, v.camera); !why.empty())
+        const CameraKey key = track_at(scene.camera_track, t);
+        if (std::string why = track_camera(scene, key, v.camera); !why.empty())
             throw std::runtime_error("the camera track at " + std::to_string(t) + " s: " + why);
-        v.circles = circles_of(track_at(scene.camera_track, t), scene.circles);
+        v.circles = circles_of(key, scene.circles);
         v.on_track = true;
         v.time = t;
         // Central difference over a frame either side (one side at the track's ends).

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pipeline/input/camera.h"
+#include "pipeline/input/camera_track.h"
 #include "pipeline/input/distance_circles.h"
 #include "pipeline/input/frame_range.h"
 #include "pipeline/input/scene.h"
@@ -34,6 +35,8 @@ struct FrameView {
 // key at t over the scene's camera parameters. Returns why it is degenerate there (its look-at
 // passing through its position), or "".
 std::string track_camera(const SceneDesc& scene, double t, Camera& out);
+// The same from the track's key at that time, for a caller that reads the key's circles too.
+std::string track_camera(const SceneDesc& scene, const CameraKey& key, Camera& out);
 
 // The view of a still: the scene's camera and sun.
 FrameView still_view(const SceneDesc& scene);
