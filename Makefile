@@ -7,7 +7,8 @@ SAN_BUILD ?= build-sanitize
 JOBS ?= $(shell nproc)
 DEPS := build-essential cmake ninja-build libopenmesh-dev libglm-dev libopenimageio-dev \
         openimageio-tools libembree-dev libtbb-dev nlohmann-json3-dev libcli11-dev \
-        libgtest-dev libbenchmark-dev libhwy-dev libcairo2-dev pkg-config ffmpeg
+        libgtest-dev libbenchmark-dev libhwy-dev libcairo2-dev pkg-config ffmpeg \
+        libcpp-httplib-dev
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 FUZZ_BUILD ?= build-fuzz
@@ -15,7 +16,7 @@ FUZZ_BUILD ?= build-fuzz
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := tree_preset shader_preset palette scene set_value particle_file graftal imposter
 
-.PHONY: all deps build render test test-sanitize test-farm fuzz bench format reference golden gallery clean
+.PHONY: all deps build render test test-sanitize test-farm test-studio fuzz bench format reference golden gallery clean
 
 all: build
 
@@ -46,6 +47,23 @@ test: build
 # installs slurmctld, slurmd and munge if missing): tests/farm/test_farm.sh.
 test-farm: build
 	PLEINAIR=$(abspath $(BUILD))/pleinair tests/farm/test_farm.sh
+
+# The studio in a headless Chromium driven by Selenium (installs chromium, its driver and
+# python3-selenium if missing): tests/studio/test_studio.py. Screenshots stay in
+# $(BUILD)/studio-artifacts.
+STUDIO_DEPS := chromium chromium-driver python3-selenium
+test-studio: build
+	@missing=""; \
+	for p in $(STUDIO_DEPS); do \
+	    dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	    echo "Installing Debian packages:$$missing"; \
+	    $(SUDO) apt-get update -qq && \
+	    DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends $$missing; \
+	fi
+	/usr/bin/python3 tests/studio/test_studio.py --pleinair $(BUILD)/pleinair \
+	    --artifacts $(BUILD)/studio-artifacts
 
 # The same tests built with AddressSanitizer and UndefinedBehaviorSanitizer.
 test-sanitize: deps

@@ -72,6 +72,15 @@ struct BenchCommand {
     std::string save;          // coherence: a frame pattern; look: an image; empty: none
 };
 
+struct StudioCommand {
+    std::string scene;             // a scene name or file; or
+    std::string preset;            // a tree preset, grown alone and framed
+    std::vector<std::string> set;  // "POINTER=VALUE" overrides to start from
+    std::string host = "127.0.0.1";
+    int port = 8420;                  // 0: any free port
+    std::string save_to = "presets";  // where "keep" writes
+};
+
 struct PresetsCommand {
     std::string reference;  // "trees", "shaders" or "scenes": print that key reference instead
 };
@@ -85,6 +94,7 @@ int run_animate(const AnimateCommand& cmd);
 int run_bench_accuracy(const BenchCommand& cmd);
 int run_bench_coherence(const BenchCommand& cmd);
 int run_bench_look(const BenchCommand& cmd);
+int run_studio(const StudioCommand& cmd);
 
 struct SceneDesc;
 // The time of the frame a command paints of `scene`: `time` or `frame` (not both; InputError

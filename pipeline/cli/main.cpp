@@ -231,6 +231,31 @@ Command add_presets(CLI::App& app) {
     return {p, [=] { return run_presets(*c); }};
 }
 
+// The `studio` command's options; returns what runs it once they are parsed.
+Command add_studio(CLI::App& app) {
+    auto c = std::make_shared<StudioCommand>();
+    CLI::App* s = app.add_subcommand(
+        "studio", "A local page that paints every change as you make it (Ctrl-C stops it)");
+    s->add_option("scene", c->scene, "Scene name (presets/scenes) or JSON file");
+    s->add_option("--preset", c->preset, "A tree preset (name or file), grown alone and framed");
+    s->add_option("--set", c->set, "Override a scene key to start from: POINTER=VALUE");
+    s->add_option("--host", c->host,
+                  "Interface to listen on (default 127.0.0.1; another exposes the studio to "
+                  "the network)");
+    s->add_option("--port", c->port, "Port (default 8420; 0: any free port)")
+        ->check(CLI::Range(0, 65535));
+    s->add_option("--save-to", c->save_to,
+                  "Folder where \"keep\" writes presets (default ./presets), the only place "
+                  "the studio writes");
+
+    return {s, [=] {
+                if (c->scene.empty() == c->preset.empty())
+                    throw InputError("studio", "",
+                                     "give a SCENE or --preset TREE (one of them, not both)");
+                return run_studio(*c);
+            }};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -255,8 +280,8 @@ int main(int argc, char** argv) {
         ->each([](const std::string& v) {
             if (std::string why = set_limit(v); !why.empty()) throw CLI::ValidationError(why);
         });
-    const Command commands[] = {add_tree(app),    add_family(app), add_render(app),
-                                add_animate(app), add_bench(app),  add_presets(app)};
+    const Command commands[] = {add_tree(app),  add_family(app),  add_render(app), add_animate(app),
+                                add_bench(app), add_presets(app), add_studio(app)};
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -30,6 +30,7 @@ class StagePhase {
     // `announce`: the stage is long enough to tell the progress callback it starts.
     StagePhase(const FrameContext& ctx, const char* name, bool announce = false)
         : ctx_(ctx), name_(name) {
+        if (ctx.settings.abandon && ctx.settings.abandon()) throw FrameAbandoned();
         if (announce && ctx.settings.progress) ctx.settings.progress(name, 0.0);
     }
     void done(std::string why, std::string counts = "") {

@@ -2,6 +2,7 @@
 // alone (DESIGN.md: "the plan"), each decision with the reason --explain prints.
 #pragma once
 
+#include <exception>
 #include <functional>
 #include <vector>
 
@@ -34,6 +35,15 @@ struct FrameSettings {
     // Told when each stage starts (done 0) and how far the paint stage has come, for frames
     // long enough to report on; called from worker threads (the callee serializes).
     std::function<void(const char* stage, double done)> progress;
+    // Asked as each stage starts: true abandons the frame, and paint_frame throws
+    // FrameAbandoned. An interactive client (the studio) sets it so that the latest request
+    // wins; the frame path knows nothing of who asks.
+    std::function<bool()> abandon;
+};
+
+// What paint_frame throws when FrameSettings::abandon says so between stages.
+struct FrameAbandoned : std::exception {
+    const char* what() const noexcept override { return "frame abandoned for a newer one"; }
 };
 
 // How a frame learns each particle's light.

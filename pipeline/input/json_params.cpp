@@ -38,6 +38,12 @@ std::string save_tree_params(const TreeParams& params) {
            w.root.dump(2) + "\n";
 }
 
+std::string tree_key_catalog(const TreeParams& params) {
+    Cataloguer c;
+    visit_tree_params(params, c);
+    return c.rows.dump();
+}
+
 std::string tree_params_reference() {
     Documenter d;
     d.out << "| key | default | range | unit | meaning |\n|---|---|---|---|---|\n";

@@ -23,4 +23,8 @@ std::string save_tree_params(const TreeParams& params);
 // Markdown table of every key: pointer, default, range, unit and meaning.
 std::string tree_params_reference();
 
+// Every key as a JSON array of rows (pointer, kind, value from `params`, range, unit, doc) and
+// of its objects (kind "group"), in table order: what a page of controls is built from.
+std::string tree_key_catalog(const TreeParams& params);
+
 }  // namespace pleinair

@@ -422,6 +422,80 @@ class Documenter {
     }
 };
 
+// The key table as data, for a page of controls (the studio): one row per key with its
+// pointer, kind, current value, range, unit and documentation, and one row per object (kind
+// "group") in table order. The same table writes the reference and --save-preset, so a key
+// added there is a control with no other code.
+class Cataloguer {
+  public:
+    ordered_json rows = ordered_json::array();
+
+    template <class Fn>
+    void object(const char* key, const char* doc, Fn&& fn) {
+        path_.push_back(key);
+        rows.push_back({{"pointer", here()}, {"kind", "group"}, {"doc", doc}});
+        fn();
+        path_.pop_back();
+    }
+    void param(const char* key, const Param& p, const char* unit, const char* doc) {
+        add(key, "param", {{"base", p.base}, {"var", p.var}}, p.lo, p.hi, unit, doc)["whole"] =
+            p.whole;
+    }
+    void number(const char* key, double x, Range r, const char* unit, const char* doc) {
+        add(key, "number", x, r.lo, r.hi, unit, doc);
+    }
+    void integer(const char* key, int x, Range r, const char* doc) {
+        add(key, "integer", x, r.lo, r.hi, "", doc);
+    }
+    void boolean(const char* key, bool x, const char* doc) { add(key, "boolean", x, doc); }
+    void vector(const char* key, const glm::dvec3& x, const char* unit, const char* doc) {
+        add(key, "vector", {x.x, x.y, x.z}, doc)["unit"] = unit;
+    }
+    void vector2(const char* key, const glm::dvec2& x, const char* unit, const char* doc) {
+        add(key, "vector", {x.x, x.y}, doc)["unit"] = unit;
+    }
+    void seed(const char* key, uint64_t x, const char* doc) { add(key, "seed", x, doc); }
+    void claim(const char*) {}
+    void text(const char* key, const std::string& x, const char* doc) { add(key, "text", x, doc); }
+    void real(const char* key, float x, Range r, const char* unit, const char* doc) {
+        add(key, "number", x, r.lo, r.hi, unit, doc);
+    }
+    void color(const char* key, const glm::vec3& x, const char* doc) {
+        add(key, "color", {x.x, x.y, x.z}, doc);
+    }
+    template <class E, class Names>
+    void choice(const char* key, E x, const Names& names, const char* doc) {
+        ordered_json& row = add(key, "choice", choice_name(x, names), doc);
+        row["choices"] = ordered_json::array();
+        for (const auto& [value, name] : names) row["choices"].push_back(name);
+    }
+    void require(const char*) {}
+
+  private:
+    std::vector<std::string> path_;
+    std::string here() const {
+        std::string ptr;
+        for (const auto& p : path_) ptr += "/" + p;
+        return ptr;
+    }
+    ordered_json& add(const char* key, const char* kind, ordered_json value, const char* doc) {
+        rows.push_back({{"pointer", here() + "/" + key},
+                        {"kind", kind},
+                        {"value", std::move(value)},
+                        {"doc", doc}});
+        return rows.back();
+    }
+    ordered_json& add(const char* key, const char* kind, ordered_json value, double lo, double hi,
+                      const char* unit, const char* doc) {
+        ordered_json& row = add(key, kind, std::move(value), doc);
+        // Open ends (+-infinity) have no JSON number: left out.
+        if (std::isfinite(lo)) row["lo"] = lo;
+        if (std::isfinite(hi)) row["hi"] = hi;
+        row["unit"] = unit;
+        return row;
+    }
+};
+
 inline void apply_overrides(json& doc, const std::vector<std::string>& overrides,
                             std::vector<Problem>& problems, std::set<std::string>& overridden);
 

@@ -759,6 +759,68 @@ void parse_groups(const json& doc, SceneDesc& s, std::vector<Problem>& problems,
               });
 }
 
+// A family's edits of its presets (`tree`, `leaf_shader_keys`, `bark_shader_keys`): an object
+// laid out as the preset file, turned into the preset's "POINTER=VALUE" overrides, one per
+// value that is not an object (a gaussian parameter's {"base", "var"} is two).
+void flatten_edits(const json& v, const std::string& ptr, std::vector<std::string>& out) {
+    if (v.is_object() && !v.empty()) {
+        for (const auto& [key, child] : v.items())
+            flatten_edits(child, ptr + "/" + pointer_token(key), out);
+        return;
+    }
+    out.push_back(ptr + "=" + v.dump());
+}
+
+// Reads the family's edit object `key` (absent: none) into preset overrides.
+std::vector<std::string> family_edits(const json& f, const char* key, const std::string& ptr,
+                                      std::vector<Problem>& problems) {
+    std::vector<std::string> edits;
+    const auto it = f.find(key);
+    if (it == f.end()) return edits;
+    if (!it->is_object()) {
+        problems.push_back({ptr + "/" + key,
+                            "expected an object of the preset's keys, laid out "
+                            "as its file, got " +
+                                describe(*it)});
+        return edits;
+    }
+    for (const auto& [k, child] : it->items()) flatten_edits(child, "/" + pointer_token(k), edits);
+    return edits;
+}
+
+// Runs fn (which loads a preset with `edits` as overrides). A problem at an edited key is the
+// scene's own, at ptr + that key (the user wrote it here); any other is the preset file's,
+// named at `file_ptr` as load_into names it.
+template <class Fn>
+void load_edited(std::vector<Problem>& problems, const std::string& source,
+                 const std::string& file_ptr, const std::string& edit_ptr,
+                 const std::vector<std::string>& edits, Fn&& fn) {
+    try {
+        fn();
+    } catch (const InputError& e) {
+        static const std::string kMark = " (set by --set)";
+        for (const auto& p : e.problems()) {
+            if (e.source() == source) {  // the scene's own key (a preset name not found)
+                problems.push_back(p);
+                continue;
+            }
+            bool edited = false;
+            for (const auto& o : edits)
+                edited = edited || p.pointer.starts_with(o.substr(0, o.find('=')));
+            if (p.pointer.starts_with("--set")) edited = true;
+            std::string message = p.message;
+            if (message.ends_with(kMark)) message.resize(message.size() - kMark.size());
+            if (edited)
+                problems.push_back(
+                    {edit_ptr + (p.pointer.starts_with("--set") ? "" : p.pointer), message});
+            else
+                problems.push_back(
+                    {file_ptr,
+                     e.source() + (p.pointer.empty() ? "" : ": " + p.pointer) + ": " + p.message});
+        }
+    }
+}
+
 // Families: an object of name -> {preset, leaf_shader, bark_shader, leaf_palette?, ...}.
 void parse_families(const json& doc, const std::string& source, SceneDesc& s,
                     std::vector<Problem>& problems, std::set<std::string>& plain) {
@@ -785,7 +847,15 @@ void parse_families(const json& doc, const std::string& source, SceneDesc& s,
             r.text("bark_palette", bark_palette, "");
             r.text("style", family.style, "");
             r.text("imposters", family.imposters_name, "");
+            r.claim("tree");
+            r.claim("leaf_shader_keys");
+            r.claim("bark_shader_keys");
             r.finish();
+            const std::vector<std::string> tree_edits = family_edits(f, "tree", ptr, problems);
+            const std::vector<std::string> leaf_edits =
+                family_edits(f, "leaf_shader_keys", ptr, problems);
+            const std::vector<std::string> bark_edits =
+                family_edits(f, "bark_shader_keys", ptr, problems);
             family.graftal = load_style(family.style, source, ptr + "/style", problems);
             family.imposters =
                 load_imposters(family.imposters_name, source, ptr + "/imposters", problems);
@@ -796,14 +866,24 @@ void parse_families(const json& doc, const std::string& source, SceneDesc& s,
             load_into(problems, source, ptr + "/preset", [&] {
                 auto file = resolve_preset("trees", near_scene(family.preset, source), source,
                                            ptr + "/preset");
-                family.params = load_tree_preset(file);
+                load_edited(problems, source, ptr + "/preset", ptr + "/tree", tree_edits,
+                            [&] { family.params = load_tree_preset(file, tree_edits); });
             });
             auto shader = [&](const std::string& shader_name, const std::string& palette_name,
                               const char* key, const char* pkey, StrokeShaderParams& params,
                               Palette& palette) {
+                const std::vector<std::string>& edits =
+                    std::string(key) == "leaf_shader" ? leaf_edits : bark_edits;
                 load_into(problems, source, ptr + "/" + key, [&] {
-                    ShaderPreset sp = load_shader_preset(near_scene(shader_name, source), source,
-                                                         ptr + "/" + key);
+                    ShaderPreset sp;
+                    bool loaded = false;
+                    load_edited(problems, source, ptr + "/" + key, ptr + "/" + key + "_keys", edits,
+                                [&] {
+                                    sp = load_shader_preset(near_scene(shader_name, source), source,
+                                                            ptr + "/" + key, edits);
+                                    loaded = true;
+                                });
+                    if (!loaded) return;
                     if (sp.has_surface)
                         throw InputError(source, ptr + "/" + key,
                                          "shader \"" + shader_name +

@@ -257,6 +257,12 @@ Palette shader_palette(const PaletteFile& file, const StrokeShaderParams& p) {
     return out;
 }
 
+std::string shader_key_catalog(const StrokeShaderParams& params) {
+    Cataloguer c;
+    visit_stroke_shader(params, c);
+    return c.rows.dump();
+}
+
 std::string stroke_shader_reference() {
     Documenter d;
     d.out << "| key | default | range | unit | meaning |\n|---|---|---|---|---|\n";

@@ -46,4 +46,8 @@ Palette shader_palette(const PaletteFile& file, const StrokeShaderParams& params
 // Markdown table of every shader key: pointer, default, range, unit and meaning.
 std::string stroke_shader_reference();
 
+// The stroke shader's keys (not the surface section) as a JSON array of rows, as
+// tree_key_catalog (json_params.h) gives the tree's.
+std::string shader_key_catalog(const StrokeShaderParams& params);
+
 }  // namespace pleinair

@@ -280,6 +280,31 @@ void write_frame(const fs::path& path, const Frame& f) {
     write_file_atomic(path, memory.bytes());
 }
 
+std::string encode_frame(const Frame& f, const std::string& ext, int jpeg_quality) {
+    if (ext != ".png" && ext != ".jpg")
+        throw std::runtime_error("encode_frame: .png or .jpg, not " + ext);
+    if (const size_t bad = non_finite_values(f); bad > 0)
+        throw std::runtime_error("the frame holds " + std::to_string(bad) +
+                                 " values that are not finite; not encoded");
+    OIIO::ImageSpec spec(f.width, f.height, 3, OIIO::TypeDesc::UINT8);
+    const std::vector<uint8_t> u8 = frame_srgb8(f);
+    spec.attribute("oiio:ColorSpace", "sRGB");
+    spec.attribute("Software", "pleinair");
+    if (ext == ".png") spec.attribute("png:compressionLevel", 3);
+    if (ext == ".jpg") spec.attribute("Compression", "jpeg:" + std::to_string(jpeg_quality));
+    const fs::path name = "frame" + ext;
+    MemoryFile memory(name);
+    auto out = OIIO::ImageOutput::create(name.string());
+    const bool ok = out && out->open(memory.name(), spec) &&
+                    out->write_image(OIIO::TypeDesc::UINT8, u8.data()) && out->close() &&
+                    !out->has_error();
+    if (!ok) {
+        std::string err = out ? out->geterror() : OIIO::geterror();
+        throw std::runtime_error("cannot encode the frame as " + ext + ": " + err);
+    }
+    return memory.bytes();
+}
+
 bool image_has_size(const fs::path& path, int width, int height) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) return false;

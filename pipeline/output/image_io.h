@@ -24,6 +24,11 @@ bool is_other_image_path(const std::filesystem::path& path);
 // either way and an earlier file of the same name is untouched.
 void write_frame(const std::filesystem::path& path, const Frame& frame);
 
+// The frame's 8-bit sRGB image encoded in memory as `ext` (".png" as write_frame writes it, or
+// ".jpg" at `jpeg_quality`), for a client that shows frames without files (the studio).
+// Throws std::runtime_error for a frame with values that are not finite or a failed encode.
+std::string encode_frame(const Frame& frame, const std::string& ext, int jpeg_quality = 90);
+
 // Whether `path` is an image OpenImageIO can open whose size is width x height (a frame a
 // resumed run keeps).
 bool image_has_size(const std::filesystem::path& path, int width, int height);

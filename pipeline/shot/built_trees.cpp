@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "shading/portable_math.h"
 
@@ -48,24 +49,44 @@ BarkParticles family_bark(const Family& family, const Tree& tree, float coverage
     return emit_bark(tree, bo, seed);
 }
 
+namespace {
+
+BuiltTree build_tree(const SceneDesc& scene, size_t i, bool bark) {
+    const PlacedTree& t = scene.trees[i];
+    const Family& f = scene.families[t.family];
+    TreeOptions o;
+    o.tree_id = static_cast<uint32_t>(i);
+    o.lod = false;
+    BuiltTree b;
+    b.tree = generate_tree(f.params, t.seed, o);
+    b.family = t.family;
+    b.position = t.position;
+    // Catmull-Clark rounds the trunk's base into a dome: plant the tree deep enough that the
+    // ground meets the trunk at its full width.
+    b.position.y -= b.tree.planting_depth * t.scale;
+    b.rotation = t.rotation;
+    b.scale = t.scale;
+    if (bark) b.bark = family_bark(f, b.tree, scene.build.bark_coverage, t.seed);
+    return b;
+}
+
+}  // namespace
+
 std::vector<BuiltTree> build_trees(const SceneDesc& scene, bool bark) {
     std::vector<BuiltTree> out(scene.trees.size());
+    tbb::parallel_for(size_t{0}, scene.trees.size(),
+                      [&](size_t i) { out[i] = build_tree(scene, i, bark); });
+    return out;
+}
+
+std::vector<BuiltTree> regrow_trees(const SceneDesc& scene, bool bark,
+                                    const std::vector<BuiltTree>& before,
+                                    const std::vector<bool>& regrow) {
+    if (before.size() != scene.trees.size() || regrow.size() != scene.trees.size())
+        throw std::logic_error("regrow_trees: the scene's trees are not those grown before");
+    std::vector<BuiltTree> out(scene.trees.size());
     tbb::parallel_for(size_t{0}, scene.trees.size(), [&](size_t i) {
-        const PlacedTree& t = scene.trees[i];
-        const Family& f = scene.families[t.family];
-        TreeOptions o;
-        o.tree_id = static_cast<uint32_t>(i);
-        o.lod = false;
-        BuiltTree& b = out[i];
-        b.tree = generate_tree(f.params, t.seed, o);
-        b.family = t.family;
-        b.position = t.position;
-        // Catmull-Clark rounds the trunk's base into a dome: plant the tree deep enough that
-        // the ground meets the trunk at its full width.
-        b.position.y -= b.tree.planting_depth * t.scale;
-        b.rotation = t.rotation;
-        b.scale = t.scale;
-        if (bark) b.bark = family_bark(f, b.tree, scene.build.bark_coverage, t.seed);
+        out[i] = regrow[i] ? build_tree(scene, i, bark) : before[i];
     });
     return out;
 }

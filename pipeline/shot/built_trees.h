@@ -43,5 +43,10 @@ BarkParticles family_bark(const Family& family, const Tree& tree, float coverage
 // Generates every tree of the scene (in parallel; the result does not depend on threads), with
 // bark strokes when `bark`.
 std::vector<BuiltTree> build_trees(const SceneDesc& scene, bool bark = true);
+// The same where `regrow[i]`, the others copied from `before` (the trees the same scene grew
+// before a change that reached only those): what build_trees would give, for less work.
+std::vector<BuiltTree> regrow_trees(const SceneDesc& scene, bool bark,
+                                    const std::vector<BuiltTree>& before,
+                                    const std::vector<bool>& regrow);
 
 }  // namespace pleinair

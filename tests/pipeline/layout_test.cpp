@@ -20,7 +20,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::vector<std::string> kOrder = {"input", "shot", "frame", "output", "bench", "cli"};
+const std::vector<std::string> kOrder = {"input", "shot",   "frame", "output",
+                                         "bench", "studio", "cli"};
 
 // Each source file of `dir` (relative to the source root) with the quoted includes it names.
 std::map<std::string, std::vector<std::string>> includes_under(const std::string& dir) {
