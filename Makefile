@@ -14,7 +14,8 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 FUZZ_BUILD ?= build-fuzz
 # Seconds each fuzz target runs in `make fuzz` (CI: about a minute each).
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS := tree_preset shader_preset palette scene set_value particle_file graftal imposter
+FUZZ_TARGETS := tree_preset shader_preset palette scene set_value studio_request particle_file graftal \
+                imposter
 
 .PHONY: all deps build render test test-sanitize test-farm test-studio fuzz bench format reference golden gallery clean
 

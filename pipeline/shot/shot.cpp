@@ -153,6 +153,29 @@ Shot build_shot(SceneDesc scene, const ShotOptions& options) {
     return shot;
 }
 
+namespace {
+
+// Whether `from`'s graftals and imposters are `shot`'s too: built from the same trees and
+// landscape (the same objects, so their meshes are the ones the imposters point into), for
+// families and materials that name the same styles and imposters.
+bool can_carry(const Shot* from, const Shot& shot) {
+    if (!from || from->trees != shot.trees || from->land != shot.land) return false;
+    const SceneDesc &a = from->scene, &b = shot.scene;
+    if (a.families.size() != b.families.size() || a.materials.size() != b.materials.size())
+        return false;
+    for (size_t i = 0; i < a.families.size(); ++i)
+        if (a.families[i].style != b.families[i].style ||
+            a.families[i].imposters_name != b.families[i].imposters_name)
+            return false;
+    for (size_t i = 0; i < a.materials.size(); ++i)
+        if (a.materials[i].style != b.materials[i].style ||
+            a.materials[i].imposters_name != b.materials[i].imposters_name)
+            return false;
+    return true;
+}
+
+}  // namespace
+
 Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> trees,
                 std::shared_ptr<const BuiltLandscape> land, const ShotOptions& options) {
     Shot shot;
@@ -172,26 +195,37 @@ Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> t
     for (const auto& r : shot.scene.rocks)
         max_displacement = std::max(max_displacement, r.strokes.displacement_height);
     shot.surface_lift = 2.0f * static_cast<float>(max_displacement) + 0.01f;
+    const bool carry = can_carry(options.carry_from, shot);
     if (std::any_of(shot.scene.families.begin(), shot.scene.families.end(),
                     [](const Family& f) { return f.graftal != nullptr; }) ||
         std::any_of(shot.scene.materials.begin(), shot.scene.materials.end(),
                     [](const Material& m) { return m.graftal != nullptr; })) {
         PassTimer timer;
-        shot.graftals = build_graftals(shot.scene, *shot.trees, shot.placements, *shot.land);
+        if (carry)
+            shot.graftals = options.carry_from->graftals;
+        else
+            shot.graftals = build_graftals(shot.scene, *shot.trees, shot.placements, *shot.land);
         size_t tufts = 0, graftals = 0;
         for (const ShotGraftals& g : shot.graftals)
             tufts += g.sites.size(), graftals += g.instances.size();
-        shot.passes.push_back(
-            {"graftals", true, "tufts placed on the graftal-styled crowns and surfaces", timer.ms(),
-             std::to_string(tufts) + " tufts of " + std::to_string(graftals) + " graftals in " +
-                 std::to_string(shot.graftals.size()) + " groups"});
+        shot.passes.push_back({"graftals", true,
+                               carry ? "tufts carried over from the shot before (same trees, "
+                                       "landscape and styles)"
+                                     : "tufts placed on the graftal-styled crowns and surfaces",
+                               timer.ms(),
+                               std::to_string(tufts) + " tufts of " + std::to_string(graftals) +
+                                   " graftals in " + std::to_string(shot.graftals.size()) +
+                                   " groups"});
     }
     if (std::any_of(shot.scene.families.begin(), shot.scene.families.end(),
                     [](const Family& f) { return f.imposters != nullptr; }) ||
         std::any_of(shot.scene.materials.begin(), shot.scene.materials.end(),
                     [](const Material& m) { return m.imposters != nullptr; })) {
         PassTimer timer;
-        shot.imposters = build_imposters(shot.scene, *shot.trees, shot.placements, *shot.land);
+        if (carry)
+            shot.imposters = options.carry_from->imposters;
+        else
+            shot.imposters = build_imposters(shot.scene, *shot.trees, shot.placements, *shot.land);
         size_t edges = 0;
         for (const ImposterObject& o : shot.imposters) edges += o.edges.size();
         shot.passes.push_back({"imposters", true,

@@ -27,11 +27,18 @@ std::vector<StrokeCaster> leaf_casters(const SceneDesc& scene, const BuiltTree& 
 void leaf_casters(const SceneDesc& scene, const BuiltTree& tree, const glm::vec3& sun,
                   StrokeCaster* out);
 
+struct Shot;
+
 struct ShotOptions {
     // Each particle's light from a still sun, traced once for every frame (animations); off,
     // frames trace it for the particles they show (a still traces fewer rays that way). The
     // light is the same either way.
     bool cache_sun_light = false;
+    // An earlier shot of the same trees and landscape (the same objects) whose families name
+    // the same styles and imposters: its graftal tufts and imposter meshes, which read nothing
+    // else of the scene, are taken instead of placed again (the studio after a shader, sun or
+    // camera change). Null, or another shot's trees or landscape: built.
+    const Shot* carry_from = nullptr;
 };
 
 // What the shot holds, decided from the scene alone.

@@ -16,6 +16,7 @@
 #include "pipeline/input/error.h"
 #include "pipeline/input/presets.h"
 #include "pipeline/output/image_io.h"
+#include "pipeline/studio/studio_request.h"
 #include "pipeline/studio/workspace.h"
 
 #ifndef PLEINAIR_STUDIO_WEB_DIR
@@ -94,47 +95,6 @@ void send_error(httplib::Response& res, int status, const std::string& message,
     send_json(res, status, {{"error", message}, {"pointer", pointer}});
 }
 
-// --set's VALUE text for a JSON value from the page: a string as itself unless it would read
-// as another JSON value (then quoted), anything else as JSON.
-std::string set_text(const json& v) {
-    if (!v.is_string()) return v.dump();
-    const std::string s = v.get<std::string>();
-    const json parsed = json::parse(s, nullptr, false);
-    return parsed.is_discarded() ? s : v.dump();
-}
-
-// Whether `p` lies within `root` (both made canonical as far as they exist).
-bool within(const fs::path& p, const fs::path& root) {
-    std::error_code ec;
-    const fs::path a = fs::weakly_canonical(p, ec), r = fs::weakly_canonical(root, ec);
-    if (ec) return false;
-    auto ai = a.begin();
-    for (auto ri = r.begin(); ri != r.end(); ++ri, ++ai)
-        if (ai == a.end() || *ai != *ri) return false;
-    return true;
-}
-
-// The first string in `v` naming a file (as scenes name them: holding a "/" or ending in a
-// file's extension, .json or .ply) outside `roots`, or "". Relative names are read from the scene's
-// folder.
-std::string file_outside(const json& v, const std::vector<fs::path>& roots,
-                         const fs::path& scene_dir) {
-    if (v.is_string()) {
-        const std::string s = v.get<std::string>();
-        const bool file = s.find('/') != std::string::npos || s.find('\\') != std::string::npos ||
-                          s.ends_with(".json") || s.ends_with(".ply");
-        if (!file) return "";
-        const fs::path p = fs::path(s).is_absolute() ? fs::path(s) : scene_dir / s;
-        for (const fs::path& r : roots)
-            if (within(p, r)) return "";
-        return s;
-    }
-    if (v.is_structured())
-        for (const json& e : v)
-            if (std::string f = file_outside(e, roots, scene_dir); !f.empty()) return f;
-    return "";
-}
-
 }  // namespace
 
 struct StudioServer::Impl {
@@ -168,9 +128,11 @@ std::optional<int> frame_param(const httplib::Request& req, const Workspace& ws)
 }
 
 std::string explain_text(const StudioFrame& f) {
-    std::string out;
+    std::string out = f.built.empty()
+                          ? ""
+                          : "shot rebuilt (" + std::string(change_level_name(f.rebuilt)) + "):\n";
     char line[512];
-    for (const auto* list : {&f.report.decisions, &f.report.passes})
+    for (const auto* list : {&f.built, &f.report.decisions, &f.report.passes})
         for (const PassReport& p : *list) {
             std::snprintf(line, sizeof line, "%-20s %s %9.1f ms  %s%s%s\n", p.name.c_str(),
                           p.ran ? "ran " : "skip", p.ms, p.why.c_str(),
@@ -185,38 +147,17 @@ std::string explain_text(const StudioFrame& f) {
 void StudioServer::Impl::change(const httplib::Request& req, httplib::Response& res) {
     // A change supersedes the frame being painted: it will be painted again.
     ++latest;
-    json body = json::parse(req.body, nullptr, false);
-    if (body.is_discarded() || !body.is_object())
-        return send_error(res, 400, "expected a JSON object {\"set\": {POINTER: VALUE}}");
-    std::vector<std::pair<std::string, std::string>> sets;
-    std::vector<std::string> unset;
-    if (auto it = body.find("set"); it != body.end()) {
-        if (!it->is_object()) return send_error(res, 400, "\"set\": expected an object");
-        for (const auto& [p, v] : it->items()) {
-            // A change names presets by name, or files in the preset folders, the scene's
-            // folder or --save-to: the page cannot make the studio read anything else.
-            if (std::string f = file_outside(v, readable, workspace->scene_file().parent_path());
-                !f.empty())
-                return send_error(res, 400,
-                                  p + ": \"" + f +
-                                      "\": the studio reads files only from the preset folders, "
-                                      "the scene's folder and --save-to",
-                                  p);
-            sets.emplace_back(p, set_text(v));
-        }
-    }
-    if (auto it = body.find("unset"); it != body.end()) {
-        if (!it->is_array()) return send_error(res, 400, "\"unset\": expected pointers");
-        for (const json& p : *it) {
-            if (!p.is_string()) return send_error(res, 400, "\"unset\": expected pointers");
-            unset.push_back(p.get<std::string>());
-        }
+    StudioChange change;
+    try {
+        change = parse_studio_change(req.body, readable, workspace->scene_file().parent_path());
+    } catch (const RequestRefused& e) {
+        return send_error(res, 400, e.what(), e.pointer);
     }
     const std::lock_guard<std::mutex> lock(mutex);
     try {
         ChangeLevel level = ChangeLevel::kFrame;
-        for (const std::string& p : unset) level = std::max(level, workspace->unset(p));
-        if (!sets.empty()) level = std::max(level, workspace->set_all(sets));
+        for (const std::string& p : change.unset) level = std::max(level, workspace->unset(p));
+        if (!change.set.empty()) level = std::max(level, workspace->set_all(change.set));
         send_json(res, 200,
                   {{"level", change_level_name(level)},
                    {"catalog", json::parse(workspace->catalog_json())}});

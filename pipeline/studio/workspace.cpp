@@ -274,9 +274,14 @@ void Workspace::rebuild(bool for_preview, StudioFrame& out) {
         if (land_for_camera)
             land_ = std::make_shared<const BuiltLandscape>(build_landscape(scene_));
     }
-    shot_ = std::make_unique<Shot>(build_shot(scene_, trees_, land_, options));
+    // The graftals and imposters of the shot before, where the trees and landscape are the same
+    // (build_shot checks the styles too).
+    ShotOptions carry = options;
+    carry.carry_from = shot_.get();
+    shot_ = std::make_unique<Shot>(build_shot(scene_, trees_, land_, carry));
     out.rebuilt = *level;
     out.rebuilt_any = true;
+    out.built = shot_->passes;
     pending_.reset();
     regrow_.clear();
     camera_moved_ = false;

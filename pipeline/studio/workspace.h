@@ -15,6 +15,7 @@
 #include "pipeline/frame/frame_image.h"
 #include "pipeline/frame/frame_report.h"
 #include "pipeline/input/scene.h"
+#include "pipeline/shot/pass_report.h"
 
 namespace pleinair {
 
@@ -45,6 +46,7 @@ struct StudioFrame {
     bool exact = true;  // what `command_line` paints; false: a preview from a shot built for
                         // an earlier camera (while the camera moves)
     double build_ms = 0, paint_ms = 0;
+    std::vector<PassReport> built;  // the shot's passes, when it was rebuilt for this frame
 };
 
 class Workspace {

@@ -14,11 +14,15 @@
 #include "pipeline/input/imposter_io.h"
 #include "pipeline/input/json_params.h"
 #include "pipeline/input/particle_files.h"
+#include "pipeline/input/presets.h"
 #include "pipeline/input/scene.h"
 #include "pipeline/input/shader_io.h"
 #include "pipeline/shot/graftal_lod.h"
+#include "pipeline/studio/studio_request.h"
 
 namespace pleinair::fuzz {
+
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -99,8 +103,8 @@ int scene(const uint8_t* data, size_t size) {
     return 0;
 }
 
-int set_value(const uint8_t* data, size_t size) {
-    // Each line is one --set POINTER=VALUE over a small scene that uses every section.
+// A small scene that uses every section, for the targets that change one.
+const std::string& small_scene() {
     static const std::string base = R"({
       "camera": {"position": [0, 2, 20], "look_at": [0, 2, 0], "width": 64, "height": 48,
                  "track": [{"time": 0, "position": [0, 2, 20], "look_at": [0, 2, 0]},
@@ -111,6 +115,12 @@ int set_value(const uint8_t* data, size_t size) {
                   "hills": [{"center": [0, 0], "radius": 4, "height": 1}]},
       "families": {"oak": {"preset": "oak"}},
       "trees": [{"family": "oak", "seed": 1, "position": [0, 0, 0]}]})";
+    return base;
+}
+
+int set_value(const uint8_t* data, size_t size) {
+    // Each line is one --set POINTER=VALUE over the small scene.
+    const std::string& base = small_scene();
     std::vector<std::string> overrides;
     std::string line;
     for (size_t i = 0; i <= size; ++i) {
@@ -122,6 +132,28 @@ int set_value(const uint8_t* data, size_t size) {
         }
     }
     refused_cleanly("set_value", [&] { parse_scene(base, "fuzz/set.json", overrides); });
+    return 0;
+}
+
+int studio_request(const uint8_t* data, size_t size) {
+    // A change request from the studio's page: refused in one line, or accepted and applied to
+    // the small scene as the --sets the command line shows.
+    const fs::path presets = preset_root();
+    StudioChange change;
+    try {
+        change = parse_studio_change(text(data, size), {presets}, presets / "scenes");
+    } catch (const RequestRefused& e) {
+        const std::string msg = e.what();
+        if (msg.empty() || msg.find('\n') != std::string::npos)
+            finding("studio_request", "a refusal that is not one line: " + msg);
+        return 0;
+    } catch (const std::exception& e) {
+        finding("studio_request", std::string("not a refusal: ") + e.what());
+    }
+    std::vector<std::string> overrides;
+    for (const auto& [p, v] : change.set) overrides.push_back(p + "=" + v);
+    refused_cleanly("studio_request",
+                    [&] { parse_scene(small_scene(), "fuzz/studio.json", overrides); });
     return 0;
 }
 

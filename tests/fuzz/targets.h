@@ -14,8 +14,9 @@ namespace pleinair::fuzz {
 int tree_preset(const uint8_t* data, size_t size);
 int shader_preset(const uint8_t* data, size_t size);
 int palette(const uint8_t* data, size_t size);
-int scene(const uint8_t* data, size_t size);      // camera and sun tracks included
-int set_value(const uint8_t* data, size_t size);  // --set POINTER=VALUE lines on a scene
+int scene(const uint8_t* data, size_t size);           // camera and sun tracks included
+int set_value(const uint8_t* data, size_t size);       // --set POINTER=VALUE lines on a scene
+int studio_request(const uint8_t* data, size_t size);  // a studio change request, then applied
 int particle_file(const uint8_t* data, size_t size);
 int graftal(const uint8_t* data, size_t size);   // a graftal description, then its tuft replayed
 int imposter(const uint8_t* data, size_t size);  // an imposter description, then one drawn
@@ -25,10 +26,15 @@ struct Target {
     int (*run)(const uint8_t*, size_t);
 };
 inline constexpr Target kTargets[] = {
-    {"tree_preset", tree_preset}, {"shader_preset", shader_preset},
-    {"palette", palette},         {"scene", scene},
-    {"set_value", set_value},     {"particle_file", particle_file},
-    {"graftal", graftal},         {"imposter", imposter},
+    {"tree_preset", tree_preset},
+    {"shader_preset", shader_preset},
+    {"palette", palette},
+    {"scene", scene},
+    {"set_value", set_value},
+    {"studio_request", studio_request},
+    {"particle_file", particle_file},
+    {"graftal", graftal},
+    {"imposter", imposter},
 };
 
 }  // namespace pleinair::fuzz

@@ -87,6 +87,29 @@ TEST(Studio, EachLevelPaintsWhatAFreshBuildPaints) {
     EXPECT_EQ(f.frame.rgba, fresh(ws, false).rgba);
 }
 
+TEST(Studio, AShotChangeCarriesTheGraftalsOverAndPaintsTheSame) {
+    Workspace ws("truffula", {"/camera/width=320", "/camera/height=180"});
+    const Frame first = ws.paint(std::nullopt, true).frame;
+    EXPECT_EQ(ws.set("/sun/direction", "[0.3, 0.5, 0.6]"), ChangeLevel::kShot);
+    const StudioFrame f = ws.paint(std::nullopt, true);
+    EXPECT_EQ(f.rebuilt, ChangeLevel::kShot);
+    bool carried = false;
+    for (const PassReport& p : f.built)
+        if (p.name == "graftals") carried = p.why.find("carried over") != std::string::npos;
+    EXPECT_TRUE(carried);
+    EXPECT_NE(f.frame.rgba, first.rgba);
+    EXPECT_EQ(f.frame.rgba, fresh(ws, true).rgba);
+    // A new style is placed again.
+    ws.set("/families/truffula/style", "strokes");
+    const StudioFrame g = ws.paint(std::nullopt, true);
+    for (const PassReport& p : g.built) {
+        if (p.name == "graftals") {
+            EXPECT_EQ(p.why.find("carried over"), std::string::npos);
+        }
+    }
+    EXPECT_EQ(g.frame.rgba, fresh(ws, true).rgba);
+}
+
 TEST(Studio, ACameraMovePreviewsFromTheLastShotThenPaintsExactlyAtRest) {
     Workspace ws(two_family_scene().string());
     (void)ws.paint(std::nullopt, true);

@@ -207,6 +207,14 @@ def use_tree(studio, pleinair, artifacts, work, save_to):
               "showing the trunk alone is the same overrides on the command line")
         d.save_screenshot(os.path.join(artifacts, "studio-tree-trunk.png"))
         n = frames_shown(d)
+        d.execute_script("const s = document.getElementById('step'); s.value = 'leaves';"
+                         "s.dispatchEvent(new Event('change'));")
+        wait_full_frame(d, n)
+        command = d.find_element(By.ID, "command").get_attribute("value")
+        check("/render/bark_coverage=0" in command and "/leaves/probability" not in command,
+              "the leaves alone: no bark strokes, the trunk's overrides gone")
+        d.save_screenshot(os.path.join(artifacts, "studio-tree-leaves.png"))
+        n = frames_shown(d)
         d.execute_script("const s = document.getElementById('step'); s.value = 'whole';"
                          "s.dispatchEvent(new Event('change'));")
         wait_full_frame(d, n)

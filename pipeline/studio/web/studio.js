@@ -496,13 +496,18 @@ async function loadExplain() {
 
 // ---- the tree's tools ---------------------------------------------------------------------
 
-const STEPS = {
-  // What each step of the thesis's tool shows, as overrides of the tree's keys.
-  trunk: {'/branches/enabled': false, '/twigs/enabled': false, '/leaves/probability': 0},
-  branches: {'/leaves/probability': 0},
-  lod: {'/twigs/enabled': false, '/leaves/probability': 0},
-};
-const STEP_KEYS = ['/branches/enabled', '/twigs/enabled', '/leaves/probability'];
+// What each step of the thesis's tool shows, as overrides: the tree's keys (under its
+// family's /tree) and, for the leaves alone, the scene's bark coverage.
+function stepOverrides(step, base) {
+  const noLeaves = {[base + '/leaves/probability']: 0};
+  switch (step) {
+    case 'trunk': return {[base + '/branches/enabled']: false, [base + '/twigs/enabled']: false, ...noLeaves};
+    case 'branches': return noLeaves;
+    case 'lod': return {[base + '/twigs/enabled']: false, ...noLeaves};
+    case 'leaves': return {'/render/bark_coverage': 0};
+    default: return {};
+  }
+}
 
 function treeTools(cat) {
   const f = cat.families[0];
@@ -510,10 +515,10 @@ function treeTools(cat) {
   $('tree-tools').hidden = false;
   const base = f.pointer + '/tree';
   $('step').addEventListener('change', () => {
-    const step = STEPS[$('step').value] || {};
-    const clear = STEP_KEYS.filter((k) => !(k in step)).map((k) => base + k);
-    unsetKeys(clear);
-    for (const [k, v] of Object.entries(step)) change(base + k, v);
+    const step = stepOverrides($('step').value, base);
+    const every = Object.keys(Object.assign({}, ...['trunk', 'lod', 'leaves'].map((k) => stepOverrides(k, base))));
+    unsetKeys(every.filter((k) => !(k in step)));
+    for (const [k, v] of Object.entries(step)) change(k, v);
   });
   $('reseed').hidden = f.trees.length === 0;
   $('reseed').addEventListener('click', () => {
