@@ -21,16 +21,21 @@ FUZZ_TARGETS := tree_preset shader_preset palette scene set_value studio_request
 
 all: build
 
+# Installs those of the Debian packages named in $(1) that are missing.
+define install_missing
+@missing=""; \
+for p in $(1); do \
+    dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
+done; \
+if [ -n "$$missing" ]; then \
+    echo "Installing Debian packages:$$missing"; \
+    $(SUDO) apt-get update -qq && \
+    DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends $$missing; \
+fi
+endef
+
 deps:
-	@missing=""; \
-	for p in $(DEPS); do \
-	    dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
-	done; \
-	if [ -n "$$missing" ]; then \
-	    echo "Installing Debian packages:$$missing"; \
-	    $(SUDO) apt-get update -qq && \
-	    DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends $$missing; \
-	fi
+	$(call install_missing,$(DEPS))
 
 build: deps
 	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release
@@ -54,15 +59,7 @@ test-farm: build
 # $(BUILD)/studio-artifacts.
 STUDIO_DEPS := chromium chromium-driver python3-selenium
 test-studio: build
-	@missing=""; \
-	for p in $(STUDIO_DEPS); do \
-	    dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
-	done; \
-	if [ -n "$$missing" ]; then \
-	    echo "Installing Debian packages:$$missing"; \
-	    $(SUDO) apt-get update -qq && \
-	    DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends $$missing; \
-	fi
+	$(call install_missing,$(STUDIO_DEPS))
 	/usr/bin/python3 tests/studio/test_studio.py --pleinair $(BUILD)/pleinair \
 	    --artifacts $(BUILD)/studio-artifacts
 

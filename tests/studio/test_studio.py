@@ -101,6 +101,14 @@ def wait_full_frame(d, after, timeout=90):
     WebDriverWait(d, timeout).until(ready)
 
 
+def show_step(d, step):
+    """Chooses one of the thesis's steps (trunk, leaves, whole) and waits for its full frame."""
+    n = frames_shown(d)
+    d.execute_script("const s = document.getElementById('step'); s.value = arguments[0];"
+                     "s.dispatchEvent(new Event('change'));", step)
+    wait_full_frame(d, n)
+
+
 def shown_png(d, path):
     """The bytes of the picture on the page, as the page received them."""
     b64 = d.execute_async_script(
@@ -196,28 +204,19 @@ def use_tree(studio, pleinair, artifacts, work, save_to):
         check(same_pixels(turned, painted)[0], "after a turn, the picture equals the command's")
 
         # The thesis's steps: the trunk alone, then back to the whole tree.
-        n = frames_shown(d)
-        d.execute_script("const s = document.getElementById('step'); s.value = 'trunk';"
-                         "s.dispatchEvent(new Event('change'));")
-        wait_full_frame(d, n)
+        show_step(d, 'trunk')
         trunk = os.path.join(work, "trunk.png")
         shown_png(d, trunk)
         command = d.find_element(By.ID, "command").get_attribute("value")
         check("/leaves/probability=0" in command and "/branches/enabled=false" in command,
               "showing the trunk alone is the same overrides on the command line")
         d.save_screenshot(os.path.join(artifacts, "studio-tree-trunk.png"))
-        n = frames_shown(d)
-        d.execute_script("const s = document.getElementById('step'); s.value = 'leaves';"
-                         "s.dispatchEvent(new Event('change'));")
-        wait_full_frame(d, n)
+        show_step(d, 'leaves')
         command = d.find_element(By.ID, "command").get_attribute("value")
         check("/render/bark_coverage=0" in command and "/leaves/probability" not in command,
               "the leaves alone: no bark strokes, the trunk's overrides gone")
         d.save_screenshot(os.path.join(artifacts, "studio-tree-leaves.png"))
-        n = frames_shown(d)
-        d.execute_script("const s = document.getElementById('step'); s.value = 'whole';"
-                         "s.dispatchEvent(new Event('change'));")
-        wait_full_frame(d, n)
+        show_step(d, 'whole')
         whole = os.path.join(work, "whole.png")
         shown_png(d, whole)
         check(same_pixels(whole, turned)[0], "back to the whole tree, the picture is as before")
