@@ -201,10 +201,9 @@ Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> t
         std::any_of(shot.scene.materials.begin(), shot.scene.materials.end(),
                     [](const Material& m) { return m.graftal != nullptr; })) {
         PassTimer timer;
-        if (carry)
-            shot.graftals = options.carry_from->graftals;
-        else
-            shot.graftals = build_graftals(shot.scene, *shot.trees, shot.placements, *shot.land);
+        shot.graftals = carry
+                            ? options.carry_from->graftals
+                            : build_graftals(shot.scene, *shot.trees, shot.placements, *shot.land);
         size_t tufts = 0, graftals = 0;
         for (const ShotGraftals& g : shot.graftals)
             tufts += g.sites.size(), graftals += g.instances.size();
@@ -222,10 +221,9 @@ Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> t
         std::any_of(shot.scene.materials.begin(), shot.scene.materials.end(),
                     [](const Material& m) { return m.imposters != nullptr; })) {
         PassTimer timer;
-        if (carry)
-            shot.imposters = options.carry_from->imposters;
-        else
-            shot.imposters = build_imposters(shot.scene, *shot.trees, shot.placements, *shot.land);
+        shot.imposters =
+            carry ? options.carry_from->imposters
+                  : build_imposters(shot.scene, *shot.trees, shot.placements, *shot.land);
         size_t edges = 0;
         for (const ImposterObject& o : shot.imposters) edges += o.edges.size();
         shot.passes.push_back({"imposters", true,

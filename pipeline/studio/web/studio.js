@@ -516,7 +516,9 @@ function treeTools(cat) {
   const base = f.pointer + '/tree';
   $('step').addEventListener('change', () => {
     const step = stepOverrides($('step').value, base);
-    const every = Object.keys(Object.assign({}, ...['trunk', 'lod', 'leaves'].map((k) => stepOverrides(k, base))));
+    // Every key some step sets, so that leaving a step clears what it set.
+    const steps = [...$('step').options].map((o) => o.value);
+    const every = Object.keys(Object.assign({}, ...steps.map((k) => stepOverrides(k, base))));
     unsetKeys(every.filter((k) => !(k in step)));
     for (const [k, v] of Object.entries(step)) change(k, v);
   });
