@@ -17,6 +17,7 @@
 
 #include "pipeline/cli/commands.h"
 #include "pipeline/frame/paint_frame.h"
+#include "pipeline/frame/seen_memo.h"
 #include "pipeline/input/error.h"
 #include "pipeline/input/frame_range.h"
 #include "pipeline/input/presets.h"
@@ -213,6 +214,8 @@ std::vector<std::pair<double, int>> paint_frames(const Shot& shot, const std::ve
         std::string path;
     };
     std::unique_ptr<PendingWrite> pending;
+    // Frames painted in order share most of their occlusion rays (seen_memo.h).
+    SeenMemo memo;
     const PassTimer clock;
     double last_done = 0;
     auto in_frame = [](int f, auto&& fn) {
@@ -239,7 +242,8 @@ std::vector<std::pair<double, int>> paint_frames(const Shot& shot, const std::ve
             progress.frame_done(path, false, 0);
             continue;
         }
-        const FrameSettings settings = scene_frame_settings(shot.scene, cmd.aovs);
+        FrameSettings settings = scene_frame_settings(shot.scene, cmd.aovs);
+        settings.seen_memo = &memo;
         if (!pending) last_done = clock.ms();
         FrameReport report;
         auto frame = std::make_shared<Frame>();

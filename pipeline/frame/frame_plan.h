@@ -14,6 +14,8 @@
 
 namespace pleinair {
 
+class SeenMemo;
+
 struct Shot;
 
 // How a frame is painted from a shot: nothing in here rebuilds anything.
@@ -39,6 +41,9 @@ struct FrameSettings {
     // FrameAbandoned. An interactive client (the studio) sets it so that the latest request
     // wins; the frame path knows nothing of who asks.
     std::function<bool()> abandon;
+    // Frames of one shot painted in order (animate, the coherence bench): the occlusion rays'
+    // answers kept from one frame to the next (seen_memo.h). Null casts every ray.
+    SeenMemo* seen_memo = nullptr;
 };
 
 // What paint_frame throws when FrameSettings::abandon says so between stages.

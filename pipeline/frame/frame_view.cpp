@@ -95,6 +95,7 @@ SeenWindow seen_window(const SceneDesc& scene, const FrameView& view, const Rend
             cam = view.camera;  // a key the track's checks let through cannot fail here
         w.cameras.push_back(cam);
         w.heights.push_back(static_cast<uint8_t>(((m % 3) + 3) % 3));
+        w.lattice.push_back(m);
     }
     return w;
 }

@@ -77,6 +77,7 @@ bool scene_has_circles(const SceneDesc& scene);
 struct SeenWindow {
     std::vector<Camera> cameras;   // empty: the frame's camera, at all three heights
     std::vector<uint8_t> heights;  // per camera: 0, 1 or 2 (particle, half way, top)
+    std::vector<int64_t> lattice;  // per camera: its lattice time's index m
 };
 SeenWindow seen_window(const SceneDesc& scene, const FrameView& view, const RenderSettings& rs);
 

@@ -28,7 +28,7 @@ float leaf_fade(float value, float fade_begin, float fade_end, float g) {
 
 float bark_fade(float trunk_value, int limb_level, float label, float g) {
     if (limb_level < 2) return 1.0f;
-    const float begin = (1.0f - kBarkFadeSpan) * label_hash(label, 3);
+    const float begin = bark_fade_begin(label);
     return leaf_fade(trunk_value, begin, begin + kBarkFadeSpan, g);
 }
 
@@ -247,6 +247,33 @@ ParticleLod particle_lod(const Shot& shot, const FrameLod& lod, size_t item, Spr
     return out;
 }
 
+float thin_presence(float r, float u) {
+    if (!(r < 1.0f)) return 1.0f;
+    const float q = r * r;
+    if (!(q > 0.0f)) return 0.0f;
+    return clamp01((q * (1.0f + kThinBand) - u) / (kThinBand * q));
+}
+
+float thin_kept(float q) {
+    if (!(q < 1.0f)) return 1.0f;
+    if (!(q > 0.0f)) return 0.0f;
+    const double b = kThinBand, top = q * (1.0 + b);
+    if (top <= 1.0) return static_cast<float>(q * (1.0 + 0.5 * b));
+    // The band clipped at u = 1: whole below q, then the line from 1 at q towards 0 at top.
+    return static_cast<float>(q + (1.0 - q) * (top - 0.5 * (1.0 + q)) / (b * q));
+}
+
+float thin_draw(size_t item, SpriteKind kind, size_t j) {
+    // SplitMix64's finaliser over the particle's key: independent of its label, so the
+    // thinning does not follow the leaves' fade thresholds or the stroke noise.
+    uint64_t z = (uint64_t{item} << 35) ^ (uint64_t(kind) << 32) ^ uint64_t { j };
+    z += 0x9e3779b97f4a7c15ull;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    z ^= z >> 31;
+    return static_cast<float>(z >> 40) * (1.0f / 16777216.0f);
+}
+
 FrameLod level_of_detail(const Shot& shot, const FrameView& view, const RenderSettings& rs) {
     FrameLod lod;
     lod.camera = view.camera;
@@ -258,6 +285,7 @@ FrameLod level_of_detail(const Shot& shot, const FrameView& view, const RenderSe
     lod.trunks = c.trunks() && shot.plan.bark;
     lod.surfaces = c.leaves();
     lod.near_field = c.near_field > 0;
+    lod.thin_small = rs.thin_below_px > 0 && c.any();
     if (!lod.leaves && !lod.trunks) return lod;
     const std::vector<BuiltTree>& trees = *shot.trees;
     lod.trees.resize(trees.size());

@@ -14,6 +14,7 @@
 #include "pipeline/input/distance_circles.h"
 #include "pipeline/input/settings.h"
 #include "pipeline/shot/materials.h"
+#include "pipeline/shot/particle_clusters.h"
 
 namespace pleinair {
 
@@ -54,6 +55,9 @@ struct FrameLod {
     DistanceCircles circles;
     Camera camera;  // what the level of detail was seen from (the frame's camera)
     float fade_gain = 0.5f;
+    // Strokes drawn under render/thin_below_px are thinned out (thin_presence), with the level
+    // of detail on and circles on the camera.
+    bool thin_small = false;
     std::vector<TreeLod> trees;  // one per tree, when leaves or trunks
 };
 
@@ -75,8 +79,6 @@ float spread_factor(const TreeLod& t, float r, float e, float a);
 
 // No leaf or bark fade completes in fewer frames than this, however fast the camera moves.
 constexpr int kMinFadeFrames = 4;
-// The span of the trunk distance value over which one twig's bark stroke fades.
-constexpr float kBarkFadeSpan = 0.4f;
 
 // The most a tree's distance value may change in one frame so that a fade of length
 // `shortest_fade` (eased by gain g) takes at least kMinFadeFrames frames.
@@ -128,6 +130,19 @@ struct ParticleLod {
 ParticleLod particle_lod(const Shot& shot, const FrameLod& lod, size_t item, SpriteKind kind,
                          size_t j, const glm::dvec3& world);
 inline float near_field_scale(float near_value) { return 1.0f - 0.4f * near_value; }
+
+// Thinning of small strokes (stochastic pruning, Cook et al. 2007): a stroke drawn d pixels
+// wide, under the thinning size T, is kept by its own draw u (uniform in [0, 1)) with presence
+// thin_presence(d / T, u): whole for u < q = (d / T)^2, fading out (a dry-brush fade) as u
+// rises to q (1 + kThinBand), so as the camera comes nearer and q grows a stroke fades in over
+// that band and none appears at once; at d = T every stroke is whole. The presences' mean over
+// draws is thin_kept(q), and the survivors grow in area by 1 / thin_kept(q): the strokes
+// cover the area they all covered, with fewer of them.
+constexpr float kThinBand = 0.5f;
+float thin_presence(float r, float u);
+float thin_kept(float q);
+// The draw u of particle j of kind `kind` of item `item`: a hash, the same in every frame.
+float thin_draw(size_t item, SpriteKind kind, size_t j);
 
 // The level-of-detail stage: level_of_detail as seen from the frame's view (or the settings'
 // lod_view), its pass line when the plan has it.

@@ -9,6 +9,9 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 
+#include "pipeline/frame/group_cull.h"
+#include "pipeline/frame/seen_memo.h"
+#include "pipeline/shot/particle_input.h"
 #include "pipeline/shot/shot.h"
 #include "shading/portable_math.h"
 
@@ -16,26 +19,11 @@ namespace pleinair {
 
 namespace {
 
-// One particle as the sprite maker reads it, whatever its kind.
-struct SpriteInput {
-    SpriteKind kind = SpriteKind::kLeaf;
-    glm::dvec3 world{0.0};
-    glm::vec3 normal{0.0f};   // world, unit: the lighting normal
-    glm::vec3 tangent{0.0f};  // world, unit (bark, surfaces), or zero (leaves)
-    double width = 0;         // world units
-    double length = 0;
-    float center_distance = 0.5f, branch_distance = 0.5f, label = 0;
-    uint32_t tree_id = 0;
-    float shadow = 1;  // light reaching the particle, 0..1 (IV.4.2)
-    // Surface strokes (IV.7): their own lightness and frequencies, the crest shrink and the
-    // distance fade. Null for leaves and bark.
-    const SurfaceParticles* surface = nullptr;
-    size_t index = 0;
-    const Color* own_color = nullptr;  // an imported particle's colour
-    float own_amount = 0;
-    glm::vec3 from_center{0.0f};  // leaves: unit direction from the crown's centre (world)
-    bool hole = false;            // leaves: in a hole of the crown (not drawn)
-    ParticleLod lod;              // what the level of detail does to it (IV.6, IV.7)
+// One particle as the sprite maker reads it (particle_input.h), with what the level of detail
+// does to it and its draw for the thinning of small strokes.
+struct SpriteInput : ParticleInput {
+    ParticleLod lod;
+    float thin_draw = 0;  // uniform in [0, 1), the particle's own
 };
 
 // What every sprite of a frame shares.
@@ -56,8 +44,9 @@ struct SpriteContext {
 void stroke_px(const Camera& cam, const RenderSettings& rs, const StrokeShaderParams& p,
                const SpriteInput& in, double z, float crest, float& w, float& l) {
     const float jitter = stroke_size_jitter(p, in.label);
-    w = stroke_screen_px(cam, rs, in.width * jitter, z);
-    l = stroke_screen_px(cam, rs, in.length * jitter, z) * crest;
+    const double px_per_world = stroke_screen_px(cam, rs, 1.0, z);
+    w = static_cast<float>(px_per_world * in.width * jitter);
+    l = static_cast<float>(px_per_world * in.length * jitter) * crest;
     const float min_px = rs.min_stroke_px;
     if (w < min_px) l *= min_px / std::max(w, 1e-12f), w = min_px;
 }
@@ -171,62 +160,30 @@ void shade_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in,
 // The particle's sprite input, by kind; `light` is filled in by the caller.
 SpriteInput sprite_input(const Shot& shot, size_t item, SpriteKind kind, size_t j,
                          const RayOrigin& o, MaterialId& mat) {
-    const std::vector<BuiltTree>& trees = *shot.trees;
     SpriteInput in;
-    in.kind = kind;
-    in.world = o.world;
-    if (kind == SpriteKind::kSurface) {
-        const size_t chunk = item - trees.size();
-        const SurfaceParticles& S = shot.land->chunks[chunk];
-        mat = shot.materials.surface(S.material[j]);
-        const SpriteMaterial& m = shot.materials[mat];
-        double w = m.shader->sprite_size * shot.land->chunk_size[chunk] *
-                   inside_size(S.height(j), m.surface->inside_growth);
-        // A particle file's own sizes and colours, where it has them.
-        const BuiltLandscape::ChunkSource from = chunk < shot.land->chunk_source.size()
-                                                     ? shot.land->chunk_source[chunk]
-                                                     : BuiltLandscape::ChunkSource{};
-        if (from.file) {
-            if (!from.file->width.empty()) w = from.file->width[from.first + j];
-            if (!from.file->color.empty() && from.color_amount > 0)
-                in.own_color = &from.file->color[from.first + j], in.own_amount = from.color_amount;
-        }
-        in.normal = lighting_normal(o.normal, S.random_normal(j), m.surface->random_normal_weight);
-        in.tangent = glm::vec3(0, 1, 0);
-        in.width = w;
-        in.length = w * m.shader->stroke_aspect;
-        in.label = S.label[j];
-        in.surface = &S;
-        in.index = j;
-        return in;
-    }
-    const BuiltTree& b = trees[item];
-    const TreePlacement& pl = shot.placements[item];
-    const Family& fam = shot.scene.families[b.family];
-    const bool bark = kind == SpriteKind::kBark;
-    mat = bark ? shot.materials.bark(b.family) : shot.materials.leaf(b.family);
-    const StrokeShaderParams& p = bark ? fam.bark_shader : fam.leaf_shader;
-    in.width = tree_stroke_width(fam, p, b.scale);
-    in.length = in.width * p.stroke_aspect;
-    if (bark) {
-        in.normal = o.normal;
-        in.tangent = pl.turn(b.bark.tangent[j]);
-        in.label = b.bark.label[j];
-        in.tree_id = b.tree.id;
-    } else {
-        const LeafParticles& L = b.tree.leaves;
-        in.normal = pl.turn(L.normal[j]);
-        in.center_distance = L.center_distance[j];
-        in.branch_distance = L.branch_distance[j];
-        in.label = L.label[j];
-        in.tree_id = L.tree_id[j];
-        const glm::vec3 out = L.position[j] - b.tree.center;
-        const float len = glm::length(out);
-        if (len > 1e-6f && std::isfinite(len)) in.from_center = pl.turn(out / len);
-        in.hole =
-            crown_hole(p, L.position[j].x, L.position[j].y, L.position[j].z, L.center_distance[j]);
-    }
+    static_cast<ParticleInput&>(in) = particle_input(shot, item, kind, j, o, mat);
     return in;
+}
+
+// The thinning of small strokes (lod.h's thin_presence): a stroke drawn narrower than
+// render/thin_below_px (stroke_px's width, enlarged to min_stroke_px, times its level of
+// detail's scale) is kept by its draw, and a survivor grows to keep the area they all covered.
+// False when it is thinned out.
+bool thin(const SpriteContext& c, const SpriteMaterial& m, size_t item, size_t j, SpriteInput& in) {
+    const double z = view_depth(c.cam, in.world);
+    if (!(z > c.cam.near_depth)) return true;
+    const float jitter = stroke_size_jitter(*m.shader, in.label);
+    const float w = stroke_screen_px(c.cam, c.rs, in.width * jitter, z);
+    const float drawn = std::max(w, c.rs.min_stroke_px) * in.lod.scale;
+    const float r = drawn / c.rs.thin_below_px;
+    if (!(r < 1.0f)) return true;
+    const float kept = thin_presence(r, thin_draw(item, in.kind, j));
+    if (!(kept > 0.0f)) return false;
+    in.lod.fade *= kept;
+    const float grow = 1.0f / std::sqrt(thin_kept(r * r));
+    in.lod.scale *= grow;
+    in.lod.growth *= grow;
+    return true;
 }
 
 // The level of detail's fade, place and growth of a particle (lod.h); false when it has faded
@@ -256,6 +213,7 @@ namespace {
 struct Counters {
     tbb::combinable<uint64_t> shadow_rays{[] { return uint64_t{0}; }};
     tbb::combinable<uint64_t> hidden{[] { return uint64_t{0}; }};
+    tbb::combinable<uint64_t> occlusion_rays{[] { return uint64_t{0}; }};
 };
 
 // A particle's stroke's world radius as `cam` draws it before the level of detail (sprite_size's
@@ -277,13 +235,14 @@ double drawn_radius(const Camera& cam, const RenderSettings& rs, const SpriteMat
 // detail moves and grows survivors a little every frame).
 float visibility(const SpriteContext& c, const SeenWindow* window, const SpriteMaterial& m,
                  const SpriteInput& in, const RayOrigin& at, const RayOrigin& o, const Sprite& sp,
-                 Counters& n) {
+                 uint8_t* const* memo, size_t slot, Counters& n) {
     if (!c.shot.view_rays) return 1.0f;
     static constexpr double kHeight[3] = {0.0, 0.5, 1.0};
     auto seen_from = [&](const Camera& cam, const RayOrigin& o, int height, double radius) {
         const glm::dvec3 from = o.lifted() + cam.up * (kHeight[height] * radius);
         const glm::dvec3 to_eye = cam.eye - from;
         const double dist = glm::length(to_eye);
+        ++n.occlusion_rays.local();
         // Any hit short of the eye hides it: an occlusion query, cheaper than the nearest hit.
         return !(dist > 0) ||
                !c.shot.view_rays->occluded(from, glm::vec3(to_eye / dist),
@@ -296,9 +255,16 @@ float visibility(const SpriteContext& c, const SeenWindow* window, const SpriteM
         rays = 3;
     } else {
         for (size_t i = 0; i < window->cameras.size(); ++i) {
+            uint8_t* answer = memo ? &memo[i][slot] : nullptr;
+            if (answer && *answer != SeenMemo::kUnknown) {
+                seen += *answer == SeenMemo::kSeen;
+                continue;
+            }
             const Camera& cam = window->cameras[i];
-            seen +=
+            const bool s =
                 seen_from(cam, at, window->heights[i], drawn_radius(cam, c.rs, m, in, at.world));
+            if (answer) *answer = s ? SeenMemo::kSeen : SeenMemo::kHidden;
+            seen += s;
         }
         rays = static_cast<int>(window->cameras.size());
     }
@@ -351,66 +317,127 @@ void sprite_extent(const Sprite& sp, float& ex, float& ey) {
     ey = std::abs(sp.ay) * sp.half_l + std::abs(sp.ax) * sp.half_w;
 }
 
-// True perspective scaled by (focus / z)^(1 - stroke_perspective), so strokes shrink less than
-// geometry.
-float stroke_screen_px(const Camera& cam, const RenderSettings& r, double world, double z) {
-    double p = std::clamp<double>(r.stroke_perspective, 0.0, 1.0);
-    double px = cam.focal_px * world / (pmath::pow(cam.focus_distance, 1.0 - p) * pmath::pow(z, p));
-    return static_cast<float>(px);
-}
+namespace {
+
+// Makes the sprites of one item into `out`, particle by particle.
+struct ItemSprites {
+    const SpriteContext& c;
+    const SpriteStageInput& input;
+    size_t item;
+    SpriteSet& out;
+    Counters& counters;
+    std::vector<uint8_t*> memo;  // per window camera, this item's answers kept from before
+
+    void remember() {
+        if (!input.seen_memo || !input.seen || input.seen->cameras.empty()) return;
+        const size_t n = item_particles(c.shot, item);
+        for (size_t k = 0; k < input.seen->cameras.size(); ++k)
+            memo.push_back(input.seen_memo->answers(k, item, n));
+    }
+
+    void particle(SpriteKind kind, size_t j, const RayOrigin& origin, size_t slot) {
+        const Shot& shot = c.shot;
+        const FramePlan& plan = c.plan;
+        if (drawn_as_graftals(shot, item, kind, j)) return;
+        // Cheapest test first: faded out, on screen, thinned, then seen past the surfaces, then
+        // lit.
+        MaterialId mat;
+        // Where it is painted, which the level of detail may move; its light stays the
+        // particle's own (as the shot's light cache has it).
+        RayOrigin o = origin;
+        SpriteInput in = sprite_input(shot, item, kind, j, o, mat);
+        if (in.hole) return void(++out.culled);
+        if (!apply_lod(c, item, j, in, o)) return void((++out.culled, ++out.faded));
+        Sprite sp;
+        sp.item = static_cast<uint32_t>(item), sp.particle = static_cast<uint32_t>(j);
+        if (c.lod.thin_small && !thin(c, shot.materials[mat], item, j, in))
+            return void((++out.culled, ++out.thinned));
+        if (!place_sprite(c, mat, in, sp)) return void(++out.culled);
+        const float seen = visibility(c, input.seen, shot.materials[mat], in, origin, o, sp,
+                                      memo.empty() ? nullptr : memo.data(), slot, counters);
+        if (!(seen > 0.0f)) return void(++out.culled);
+        sp.fade *= seen;
+        const bool traced = plan.sun_light == SunLightSource::kShotScene ||
+                            plan.sun_light == SunLightSource::kFrameScene;
+        if (plan.sun_light == SunLightSource::kShot)
+            in.shadow = shot.sun_light[item][slot];
+        else if (traced && !plan.fragment_shadows)
+            ++counters.shadow_rays.local(),
+                in.shadow = sun_light_at(*input.sun_rays, origin, c.sun, c.rs.shadows);
+        in.shadow += (1.0f - in.shadow) * in.lod.shadow_lift;
+        shade_sprite(c, mat, in, sp);
+        if (plan.fragment_shadows) {
+            sp.grid = static_cast<int32_t>(out.grids.size());
+            out.grids.push_back(shadow_grid(c, *input.sun_rays, o, sp, counters));
+        }
+        out.sprites.push_back(sp);
+    }
+
+    // Every particle, in for_each_particle's order.
+    void each() {
+        size_t k = 0;  // the particle's index in the shot's light cache
+        for_each_particle(c.shot, item, [&](SpriteKind kind, size_t j, const RayOrigin& origin) {
+            particle(kind, j, origin, k++);
+        });
+    }
+
+    // Cluster by cluster: those that cannot show are counted as culled without a look at their
+    // particles; the others' particles are visited in for_each_particle's order, so the sprites
+    // are the same as each()'s.
+    void by_cluster() {
+        const Shot& shot = c.shot;
+        const ItemClusters& ic = shot.clusters[item];
+        std::vector<uint32_t> shown[2];  // bark or surface, then leaves
+        for (const ParticleCluster& cl : ic.clusters) {
+            const ClusterFate fate = cluster_fate(shot, c.lod, c.cam, c.rs, item, cl);
+            if (fate == ClusterFate::kShown) {
+                std::vector<uint32_t>& to = shown[cl.kind == SpriteKind::kLeaf];
+                to.insert(to.end(), ic.order.begin() + cl.first,
+                          ic.order.begin() + cl.first + cl.count);
+                continue;
+            }
+            // Counted as each() counts them: graftal-styled particles are no strokes.
+            uint64_t n = cl.count;
+            if (!shot.graftals.empty())
+                n = std::count_if(
+                    ic.order.begin() + cl.first, ic.order.begin() + cl.first + cl.count,
+                    [&](uint32_t j) { return !drawn_as_graftals(shot, item, cl.kind, j); });
+            out.culled += n, out.grouped += n;
+            if (fate == ClusterFate::kFaded) out.faded += n;
+        }
+        const bool tree = item < shot.trees->size();
+        const SpriteKind first = tree ? SpriteKind::kBark : SpriteKind::kSurface;
+        for (int k = 0; k < 2; ++k) {
+            std::sort(shown[k].begin(), shown[k].end());
+            const SpriteKind kind = k == 0 ? first : SpriteKind::kLeaf;
+            for (const uint32_t j : shown[k])
+                particle(kind, j, particle_origin(shot, item, kind, j),
+                         particle_slot(shot, item, kind, j));
+        }
+    }
+};
+
+}  // namespace
 
 SpriteSet make_sprites(const SpriteStageInput& input) {
     const Shot& shot = input.shot;
-    const FramePlan& plan = input.plan;
-    const RenderSettings& rs = input.settings;
-    const RayScene* sun_rays = input.sun_rays;
     const SpriteContext c{shot,
                           input.view.camera,
-                          rs,
-                          plan,
+                          input.settings,
+                          input.plan,
                           input.lod,
                           glm::vec3(input.view.sun_direction),
                           input.view.eye_speed};
     const size_t items = shot.item_count();
     std::vector<SpriteSet> per_item(items);
     Counters counters;
-    const bool traced = plan.sun_light == SunLightSource::kShotScene ||
-                        plan.sun_light == SunLightSource::kFrameScene;
+    const bool by_cluster = input.group_culling && shot.clusters.size() == items;
+    if (input.seen_memo && input.seen) input.seen_memo->begin_frame(shot, *input.seen, c.rs);
     tbb::parallel_for(size_t{0}, items, [&](size_t i) {
         FlushDenormals ftz;  // Embree's modes, while this task traces
-        SpriteSet& out = per_item[i];
-        size_t k = 0;  // the particle's index in the shot's light cache
-        for_each_particle(shot, i, [&](SpriteKind kind, size_t j, const RayOrigin& origin) {
-            const size_t slot = k++;
-            if (drawn_as_graftals(shot, i, kind, j)) return;
-            // Cheapest test first: faded out, on screen, then seen past the surfaces, then lit.
-            MaterialId mat;
-            // Where it is painted, which the level of detail may move; its light stays the
-            // particle's own (as the shot's light cache has it).
-            RayOrigin o = origin;
-            SpriteInput in = sprite_input(shot, i, kind, j, o, mat);
-            if (in.hole) return void(++out.culled);
-            if (!apply_lod(c, i, j, in, o)) return void((++out.culled, ++out.faded));
-            Sprite sp;
-            sp.item = static_cast<uint32_t>(i), sp.particle = static_cast<uint32_t>(j);
-            if (!place_sprite(c, mat, in, sp)) return void(++out.culled);
-            const float seen =
-                visibility(c, input.seen, shot.materials[mat], in, origin, o, sp, counters);
-            if (!(seen > 0.0f)) return void(++out.culled);
-            sp.fade *= seen;
-            if (plan.sun_light == SunLightSource::kShot)
-                in.shadow = shot.sun_light[i][slot];
-            else if (traced && !plan.fragment_shadows)
-                ++counters.shadow_rays.local(),
-                    in.shadow = sun_light_at(*sun_rays, origin, c.sun, rs.shadows);
-            in.shadow += (1.0f - in.shadow) * in.lod.shadow_lift;
-            shade_sprite(c, mat, in, sp);
-            if (plan.fragment_shadows) {
-                sp.grid = static_cast<int32_t>(out.grids.size());
-                out.grids.push_back(shadow_grid(c, *sun_rays, o, sp, counters));
-            }
-            out.sprites.push_back(sp);
-        });
+        ItemSprites make{c, input, i, per_item[i], counters, {}};
+        make.remember();
+        by_cluster ? make.by_cluster() : make.each();
     });
     SpriteSet all;
     for (SpriteSet& s : per_item) {
@@ -424,10 +451,13 @@ SpriteSet make_sprites(const SpriteStageInput& input) {
         all.sprites.insert(all.sprites.end(), s.sprites.begin(), s.sprites.end());
         all.culled += s.culled;
         all.faded += s.faded;
+        all.thinned += s.thinned;
+        all.grouped += s.grouped;
         s = SpriteSet{};
     }
     all.shadow_rays = counters.shadow_rays.combine(std::plus<uint64_t>());
     all.hidden = counters.hidden.combine(std::plus<uint64_t>());
+    all.occlusion_rays = counters.occlusion_rays.combine(std::plus<uint64_t>());
     return all;
 }
 
@@ -435,8 +465,9 @@ SpriteSet sprites_stage(const FrameContext& ctx, const FrameLod& lod, const RayS
                         const SeenWindow& seen) {
     StagePhase phase(ctx, "sprites", true);
     const FramePlan& plan = ctx.plan;
-    SpriteSet sprites =
-        make_sprites({ctx.shot, ctx.view, plan, ctx.render(), lod, sun_rays, &seen});
+    SpriteStageInput input{ctx.shot, ctx.view, plan, ctx.render(), lod, sun_rays, &seen};
+    input.seen_memo = ctx.settings.seen_memo;
+    SpriteSet sprites = make_sprites(input);
     FrameReport& rep = ctx.report;
     rep.leaf_sprites = sprites.leaf, rep.bark_sprites = sprites.bark;
     rep.surface_sprites = sprites.surface, rep.culled = sprites.culled;
@@ -453,9 +484,17 @@ SpriteSet sprites_stage(const FrameContext& ctx, const FrameLod& lod, const RayS
                                           std::to_string(seen.cameras.size()) + " frames"),
         std::to_string(sprites.sprites.size()) + " sprites, " + std::to_string(sprites.culled) +
             " culled (" + std::to_string(sprites.hidden) + " hidden, " +
-            std::to_string(sprites.faded) + " faded out)" +
+            std::to_string(sprites.faded) + " faded out" +
+            (sprites.thinned ? ", " + std::to_string(sprites.thinned) + " thinned" : "") +
+            (sprites.grouped ? "; " + std::to_string(sprites.grouped) + " of them by group" : "") +
+            ")" +
             (sprites.shadow_rays ? ", " + std::to_string(sprites.shadow_rays) + " shadow rays"
-                                 : ""));
+                                 : "") +
+            (sprites.occlusion_rays
+                 ? ", " + std::to_string(sprites.occlusion_rays) + " occlusion rays" +
+                       (ctx.settings.seen_memo ? " (the others' answers kept from frames before)"
+                                               : "")
+                 : ""));
     return sprites;
 }
 

@@ -9,6 +9,7 @@
 #include "pipeline/frame/frame_context.h"
 #include "pipeline/frame/frame_plan.h"
 #include "pipeline/frame/lod.h"
+#include "pipeline/frame/stroke_size.h"
 #include "pipeline/shot/graftal_draw.h"
 #include "pipeline/shot/materials.h"
 #include "shading/stroke_shader.h"
@@ -16,6 +17,7 @@
 namespace pleinair {
 
 struct SceneDesc;
+class SeenMemo;
 struct Shot;
 class RayScene;
 
@@ -58,21 +60,18 @@ void reseed_noise(StrokeConstants& k, uint32_t noise_reseed);
 // Half extents of a sprite's screen-aligned bounding box (the rotated rectangle's).
 void sprite_extent(const Sprite& sp, float& ex, float& ey);
 
-// Screen size in pixels of a world length at view depth z (thesis ch. I: brush strokes do not
-// shrink like geometry): true perspective at stroke_perspective 1, the size it has at the
-// camera's focus distance whatever the depth at 0, in between otherwise. The painter then
-// enlarges anything under min_stroke_px.
-float stroke_screen_px(const Camera& cam, const RenderSettings& r, double world, double depth);
-
 struct SpriteSet {
     std::vector<Sprite> sprites;  // per tree (bark, then leaves), then per surface chunk
     std::vector<ShadowGrid> grids;
     std::vector<GraftalPatch> patches;  // the graftals stage's, one per kGraftal sprite
     uint64_t leaf = 0, bark = 0, surface = 0, graftal = 0;
-    uint64_t culled = 0;  // behind the camera, off screen, too faint, faded out, or hidden
-    uint64_t faded = 0;   // of those, faded out by the level of detail
-    uint64_t hidden = 0;  // of those, behind an opaque surface
+    uint64_t culled = 0;   // behind the camera, off screen, too faint, faded out, or hidden
+    uint64_t faded = 0;    // of those, faded out by the level of detail
+    uint64_t hidden = 0;   // of those, behind an opaque surface
+    uint64_t thinned = 0;  // of those, thinned out for being small on screen (lod.h)
+    uint64_t grouped = 0;  // of those, culled with their cluster, none looked at (group_cull.h)
     uint64_t shadow_rays = 0;
+    uint64_t occlusion_rays = 0;  // cast this frame (SeenMemo answers the others)
 };
 
 // What the sprites stage reads.
@@ -86,6 +85,11 @@ struct SpriteStageInput {
     // plan takes no light from rays.
     const RayScene* sun_rays = nullptr;
     const SeenWindow* seen = nullptr;  // null: the frame's eye only
+    // Clusters that cannot show are culled whole (group_cull.h); false looks at every particle
+    // (the same sprites, the reference the tests compare with).
+    bool group_culling = true;
+    // Occlusion answers kept from the frames before (seen_memo.h); null casts every ray.
+    SeenMemo* seen_memo = nullptr;
 };
 
 SpriteSet make_sprites(const SpriteStageInput& input);

@@ -391,6 +391,12 @@ void visit_scene(SceneDesc& s, V& v) {
         v.real("max_leaf_growth", r.max_leaf_growth, {1, 10}, "",
                "Most a surviving leaf stroke grows (linear size) to keep its tree's coverage "
                "as outer leaves fade.");
+        v.real("thin_below_px", r.thin_below_px, {0, 1000}, "px",
+               "With the level of detail: strokes drawn narrower than this on screen are thinned "
+               "out at random (each by its own draw, fading in as it grows) and the survivors "
+               "grown to keep the area they all covered (Cook et al. 2007's stochastic "
+               "pruning): fewer, larger strokes for a small or preview frame, cheaper to make "
+               "and paint (BENCHMARKS.md, \"Frames that cost what they show\"); 0 thins none.");
         v.real("order_blend_frames", r.order_blend_frames, {0, 48}, "",
                "Strokes are painted in order of distance from the eye. When the camera moves and "
                "two overlapping strokes' distances cross, they blend from one order to the other "

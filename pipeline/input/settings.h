@@ -42,6 +42,9 @@ struct RenderSettings {
     bool level_of_detail = true;
     float fade_gain = 0.6f;        // Perlin gain on a fade: above 0.5 it eases in and out
     float max_leaf_growth = 2.5f;  // survivors grow at most this much (linear)
+    // With the level of detail: strokes drawn narrower than this on screen are thinned out,
+    // the survivors grown to keep their area (lod.h's thin_presence); 0 thins none.
+    float thin_below_px = 0.0f;
     // Frames over which two overlapping strokes whose eye distances cross change order (V.3,
     // Fig. 31), instead of swapping in one; 0 swaps at once. Stills are unaffected.
     float order_blend_frames = 5.0f;

@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 #include <limits>
 
+#include "pipeline/shot/cluster_build.h"
 #include "shading/pigment.h"
 #include "shading/portable_math.h"
 
@@ -279,6 +280,18 @@ Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> t
                                       " stroke casters for the sun"
                   : plan.sun_moves ? ", the sun's scene per frame (the sun moves)"
                                    : std::string(", no shadow scene"))});
+    }
+    {
+        PassTimer timer;
+        shot.clusters = build_clusters(shot.particles());
+        size_t clusters = 0;
+        for (const ItemClusters& c : shot.clusters) clusters += c.clusters.size();
+        shot.passes.push_back({"clusters", true,
+                               "each item's particles grouped by place, bounded, so frames cull "
+                               "them a group at a time",
+                               timer.ms(),
+                               std::to_string(clusters) + " clusters of up to " +
+                                   std::to_string(kClusterSize) + " particles"});
     }
     if (plan.sun_light) {
         PassTimer timer;

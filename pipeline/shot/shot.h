@@ -13,6 +13,8 @@
 #include "pipeline/shot/imposter_objects.h"
 #include "pipeline/shot/landscape.h"
 #include "pipeline/shot/materials.h"
+#include "pipeline/shot/particle_clusters.h"
+#include "pipeline/shot/particle_input.h"
 #include "pipeline/shot/pass_report.h"
 #include "pipeline/shot/rays.h"
 #include "pipeline/shot/sky_strokes.h"
@@ -57,19 +59,6 @@ struct ViewSurface {
     MaterialId material;
 };
 
-// Where a particle's rays start: its world position, lifted by `lift` along `normal` when it
-// lies on a surface (bark, ground), so no ray hits the surface it was emitted from.
-struct RayOrigin {
-    glm::dvec3 world{0.0};
-    glm::vec3 normal{0.0f};
-    bool on_surface = false;
-    float lift = 0;
-    glm::dvec3 lifted() const {
-        return on_surface ? world + glm::dvec3(normal) * double(lift) : world;
-    }
-    const glm::vec3* surface_normal() const { return on_surface ? &normal : nullptr; }
-};
-
 // Immutable once built; nothing in it points into itself, so it may be moved (animate holds it
 // on the heap). Not copied: its Embree scenes are owned once.
 struct Shot {
@@ -91,6 +80,9 @@ struct Shot {
     // plan.sun_light: per item (trees, then surface chunks), per particle in the order
     // for_each_particle visits them, the light reaching it.
     std::vector<std::vector<float>> sun_light;
+    // Per item, its particles grouped by place with the bounds a frame culls them by, a group
+    // at a time (particle_clusters.h).
+    std::vector<ItemClusters> clusters;
 
     // The graftal-styled families' crowns and materials' surfaces (graftal_stage.h); their
     // leaf and surface strokes are not painted. Graftal sprites' items count on from
@@ -111,7 +103,25 @@ struct Shot {
     Shot(const Shot&) = delete;
 
     size_t item_count() const { return trees->size() + land->chunks.size(); }
+    ParticleSource particles() const {
+        return {scene, *trees, *land, placements, materials, plan.bark, surface_lift};
+    }
 };
+
+// particle_input.h's readers, of a shot.
+inline ParticleInput particle_input(const Shot& shot, size_t item, SpriteKind kind, size_t j,
+                                    const RayOrigin& o, MaterialId& mat) {
+    return particle_input(shot.particles(), item, kind, j, o, mat);
+}
+inline RayOrigin particle_origin(const Shot& shot, size_t item, SpriteKind kind, size_t j) {
+    return particle_origin(shot.particles(), item, kind, j);
+}
+inline size_t item_particles(const Shot& shot, size_t item) {
+    return item_particles(shot.particles(), item);
+}
+inline size_t particle_slot(const Shot& shot, size_t item, SpriteKind kind, size_t j) {
+    return particle_slot(shot.particles(), item, kind, j);
+}
 
 // Builds the shot of a scene: grows the trees and the landscape, then everything else.
 Shot build_shot(SceneDesc scene, const ShotOptions& options = {});
@@ -126,6 +136,11 @@ std::unique_ptr<RayScene> build_sun_scene(const Shot& shot, const glm::vec3& sun
 // The light reaching a particle from the sun through the sun's scene.
 float sun_light_at(const RayScene& sun_rays, const RayOrigin& origin, const glm::vec3& sun,
                    ShadowMode mode);
+
+// How far a bark stroke's rays start off its limb: 2% of the tree's unit.
+inline float bark_ray_lift(const Shot& shot, const BuiltTree& b) {
+    return static_cast<float>(0.02 * shot.scene.families[b.family].params.unit * b.scale);
+}
 
 // Visits every particle of item i (tree i, then surface chunk i - trees): for a tree its bark
 // strokes (when the plan paints bark) then its leaves; fn(kind, index, origin).
@@ -146,8 +161,7 @@ void for_each_particle(const Shot& shot, size_t item, Fn&& fn) {
     const TreePlacement& pl = shot.placements[item];
     if (shot.plan.bark) {
         const BarkParticles& B = b.bark;
-        const float lift =
-            static_cast<float>(0.02 * shot.scene.families[b.family].params.unit * b.scale);
+        const float lift = bark_ray_lift(shot, b);
         for (size_t j = 0; j < B.size(); ++j)
             fn(SpriteKind::kBark, j,
                RayOrigin{pl.place(B.position[j]), pl.turn(B.normal[j]), true, lift});

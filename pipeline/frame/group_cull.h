@@ -1,0 +1,30 @@
+// Culling by group: whether a cluster of particles can show in a frame, decided from its bounds
+// before any particle of it is read, so a tree wholly off screen or faded out costs a few
+// projections instead of a look at each of its strokes.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "pipeline/frame/lod.h"
+#include "pipeline/shot/particle_clusters.h"
+
+namespace pleinair {
+
+struct Shot;
+struct Camera;
+struct RenderSettings;
+
+enum class ClusterFate : uint8_t {
+    kShown,      // some particle of it may show: each is looked at
+    kFaded,      // every particle has faded out by the level of detail
+    kOffScreen,  // every sprite lies behind the camera or wholly off screen
+};
+
+// Conservative: kFaded or kOffScreen only when the sprites stage, particle by particle, would
+// cull each of the cluster's particles for that reason. `cam` is the frame's camera (the level
+// of detail's may be another, lod.camera).
+ClusterFate cluster_fate(const Shot& shot, const FrameLod& lod, const Camera& cam,
+                         const RenderSettings& rs, size_t item, const ParticleCluster& c);
+
+}  // namespace pleinair

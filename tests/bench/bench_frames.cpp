@@ -1,0 +1,111 @@
+// Frames that cost what they show (issue 26): the sprites stage of a forest-edge-walk frame
+// at 480x270 and 1920x1080, particle by particle against cluster by cluster, each ray cast
+// against answers kept from the frame before (SeenMemo), and with small strokes thinned
+// (render/thin_below_px); and whole frames at both sizes. Measured in the same run; figures
+// in BENCHMARKS.md, "Frames that cost what they show".
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include "pipeline/frame/paint_frame.h"
+#include "pipeline/frame/seen_memo.h"
+#include "pipeline/frame/sprites.h"
+#include "pipeline/input/presets.h"
+
+using namespace pleinair;
+
+namespace {
+
+// The walk's shot at one image size, built once per size.
+const Shot& walk(int width) {
+    static std::map<int, std::unique_ptr<Shot>> shots;
+    auto& s = shots[width];
+    if (!s) {
+        SceneDesc scene = load_scene(resolve_preset("scenes", "forest-edge-walk", "bench"));
+        scene.camera_params.width = width;
+        scene.camera_params.height = width * 9 / 16;
+        ShotOptions options;
+        options.cache_sun_light = true;  // as animate builds it
+        s = std::make_unique<Shot>(build_shot(std::move(scene), options));
+    }
+    return *s;
+}
+
+constexpr int kFrame = 24;
+
+// args: image width, group culling, memo (the frame before painted first), thin_below_px.
+void BM_Sprites(benchmark::State& state) {
+    const Shot& shot = walk(static_cast<int>(state.range(0)));
+    FrameSettings fs = scene_frame_settings(shot.scene);
+    fs.render.thin_below_px = static_cast<float>(state.range(3));
+    const FrameView view = view_at(shot.scene, frame_time(kFrame, shot.scene.fps));
+    const FrameView before = view_at(shot.scene, frame_time(kFrame - 1, shot.scene.fps));
+    const FramePlan plan = plan_frame(shot, fs);
+    const FrameLod lod = level_of_detail(shot, view, fs.render);
+    const FrameLod lod_before = level_of_detail(shot, before, fs.render);
+    const SeenWindow seen = seen_window(shot.scene, view, fs.render);
+    const SeenWindow seen_before = seen_window(shot.scene, before, fs.render);
+    SpriteSet set;
+    for (auto _ : state) {
+        SeenMemo memo;
+        SpriteStageInput in{shot, view, plan, fs.render, lod, shot.sun_rays.get(), &seen};
+        in.group_culling = state.range(1) != 0;
+        if (state.range(2)) {
+            state.PauseTiming();
+            SpriteStageInput b{
+                shot, before, plan, fs.render, lod_before, shot.sun_rays.get(), &seen_before};
+            b.seen_memo = &memo;
+            make_sprites(b);
+            state.ResumeTiming();
+            in.seen_memo = &memo;
+        }
+        set = make_sprites(in);
+        benchmark::DoNotOptimize(set.sprites.data());
+    }
+    state.counters["sprites"] = static_cast<double>(set.sprites.size());
+    state.counters["by_group"] = static_cast<double>(set.grouped);
+    state.counters["rays"] = static_cast<double>(set.occlusion_rays);
+}
+BENCHMARK(BM_Sprites)
+    ->ArgNames({"width", "group", "memo", "thin_px"})
+    ->Args({480, 0, 0, 0})
+    ->Args({480, 1, 0, 0})
+    ->Args({480, 1, 1, 0})
+    ->Args({480, 1, 1, 4})
+    ->Args({480, 1, 1, 6})
+    ->Args({1920, 0, 0, 0})
+    ->Args({1920, 1, 1, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// A whole frame (the frame before painted first, as animate does), at a width and thinning.
+void BM_Frame(benchmark::State& state) {
+    const Shot& shot = walk(static_cast<int>(state.range(0)));
+    FrameSettings fs = scene_frame_settings(shot.scene);
+    fs.render.thin_below_px = static_cast<float>(state.range(1));
+    const FrameView view = view_at(shot.scene, frame_time(kFrame, shot.scene.fps));
+    const FrameView before = view_at(shot.scene, frame_time(kFrame - 1, shot.scene.fps));
+    for (auto _ : state) {
+        SeenMemo memo;
+        fs.seen_memo = &memo;
+        state.PauseTiming();
+        paint_frame(shot, before, fs);
+        state.ResumeTiming();
+        const Frame f = paint_frame(shot, view, fs);
+        benchmark::DoNotOptimize(f.rgba.data());
+    }
+}
+BENCHMARK(BM_Frame)
+    ->ArgNames({"width", "thin_px"})
+    ->Args({480, 0})
+    ->Args({480, 6})
+    ->Args({1920, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(3);
+
+}  // namespace
+
+BENCHMARK_MAIN();
