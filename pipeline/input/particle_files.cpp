@@ -13,11 +13,7 @@
 
 namespace pleinair {
 
-namespace {
-
-using Column = PlyVertices::Column;
-
-std::vector<std::string> split(const std::string& names) {
+std::vector<std::string> split_names(const std::string& names) {
     std::vector<std::string> out;
     size_t start = 0;
     while (true) {
@@ -31,6 +27,10 @@ std::vector<std::string> split(const std::string& names) {
     }
 }
 
+namespace {
+
+using Column = PlyVertices::Column;
+
 // The columns an attribute reads: those `wanted` names (the scene's choice, which must be
 // there), or the first set of `usual` names present (none: an empty result).
 std::vector<const Column*> attribute(const PlyVertices& v, const std::string& source,
@@ -39,7 +39,7 @@ std::vector<const Column*> attribute(const PlyVertices& v, const std::string& so
     std::vector<const Column*> out;
     if (wanted == "none") return out;
     if (!wanted.empty()) {
-        const std::vector<std::string> names = split(wanted);
+        const std::vector<std::string> names = split_names(wanted);
         if (names.size() != arity)
             throw InputError(source, "",
                              std::string("the scene's ") + key + " names " +
@@ -60,7 +60,7 @@ std::vector<const Column*> attribute(const PlyVertices& v, const std::string& so
     }
     for (const char* set : usual) {
         out.clear();
-        for (const std::string& n : split(set))
+        for (const std::string& n : split_names(set))
             if (const Column* c = v.find(n)) out.push_back(c);
         if (out.size() == arity) return out;
     }
@@ -88,6 +88,10 @@ ImportedParticles import_particles(const std::string& bytes, const std::string& 
                                   "diffuse_red,"
                                   "diffuse_green,diffuse_blue"},
                                  3);
+    const auto by = attribute(v, source, "material_by", d.material_by, {}, 1);
+    if (!by.empty() && !by[0]->integer)
+        throw InputError(source, "property " + by[0]->name,
+                         "a material index must be an integer type, got " + by[0]->type);
     if (!label.empty() && !label[0]->integer)
         throw InputError(source, "property " + label[0]->name,
                          "a label must be an integer type, got " + label[0]->type);
@@ -140,7 +144,17 @@ ImportedParticles import_particles(const std::string& bytes, const std::string& 
             encode_unit(glm::vec3(glm::dvec3(r * pmath::cos(a), r * pmath::sin(a), z))));
         s.uv_code.push_back(0);
         s.height_code.push_back(encode_unorm(1.0f));
-        s.material.push_back(static_cast<uint16_t>(d.material));
+        uint32_t material = d.material;
+        if (!by.empty()) {
+            const double k = by[0]->values[i];
+            if (!(k >= 0 && k < static_cast<double>(d.materials.size())))
+                bad(source, i, *by[0],
+                    "a material index must be in 0.." + std::to_string(d.materials.size() - 1) +
+                        " (/particles/N/materials lists " + std::to_string(d.materials.size()) +
+                        "), got " + format_number(k));
+            material = d.materials[static_cast<size_t>(k)];
+        }
+        s.material.push_back(static_cast<uint16_t>(material));
         s.fade_code.push_back((2u * 16384u) | ((3u * 16384u) << 16));  // never fades
 
         if (!size.empty()) {

@@ -29,6 +29,12 @@ struct ParticleFileDesc {
     std::string file;  // as written in the scene; resolved against its folder
     std::string material_name;
     uint32_t material = 0;
+    // Materials by an integer vertex property (a class: 0 ground, 1 bark, 2 and on crowns,
+    // say): its name, and the materials' names, comma-separated, that its values 0, 1, ...
+    // pick (resolved into `materials`). Empty: every particle takes `material`.
+    std::string material_by, material_list;
+    std::vector<uint32_t> materials;
+    bool casts_shadows = true;  // cards facing the sun in its scene, like leaf strokes
     UpAxis up = UpAxis::kY;
     glm::dvec3 position{0.0};  // the file's origin in the world
     double scale = 1;          // world units per file unit (positions and sizes)
@@ -39,6 +45,9 @@ struct ParticleFileDesc {
     float color_amount = 1;    // how much of the stroke's hue comes from the file's colour
     std::shared_ptr<const ImportedParticles> particles;  // read when the scene is parsed
 };
+
+// Comma-separated names, each trimmed of spaces ("nx, ny, nz").
+std::vector<std::string> split_names(const std::string& names);
 
 // Reads `file` (bytes of a PLY file) into world strokes: positions placed by the entry's axis,
 // scale and position, labels from the label attribute (else the vertex index) hashed with

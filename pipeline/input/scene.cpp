@@ -162,9 +162,20 @@ void visit_particle_file(ParticleFileDesc& p, V& v) {
     v.text("file", p.file,
            "A PLY file of particles (ASCII or binary, float or double, as Blender, Houdini and "
            "MeshLab write them), relative to the scene's folder. Only its vertices are read.");
-    v.require("material");
     v.text("material", p.material_name,
-           "Material (/materials) whose stroke shader and palette paint them.");
+           "Material (/materials) whose stroke shader and palette paint them (required unless "
+           "material_by picks one per particle).");
+    v.text("material_by", p.material_by,
+           "Integer vertex property whose value picks each particle's material from "
+           "`materials` (0 the first): one file paints ground, trunks and several crowns. "
+           "Empty: every particle takes `material`.");
+    v.text("materials", p.material_list,
+           "With material_by: the materials (/materials), comma-separated, that the property's "
+           "values 0, 1, 2, ... pick; a value past the list is refused with its vertex.");
+    v.boolean("casts_shadows", p.casts_shadows,
+              "Whether the particles cast the sun's shadows (when the scene's sun casts them), "
+              "as cards facing the sun with their strokes' size and noise, like leaf strokes; "
+              "they always receive them.");
     v.choice("up", p.up, kUpAxes,
              "The file's up axis: \"y\" (Houdini, MeshLab) or \"z\" (Blender's, turned so "
              "its z is pleinair's y and its y points away from the camera's default view).");
@@ -621,29 +632,38 @@ void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
                   s.rocks.push_back(rock);
               });
 
-    read_list(doc, "particles", "/particles", problems, plain,
-              [&](const json&, Reader& r, const std::string& ptr) {
-                  ParticleFileDesc p;
-                  visit_particle_file(p, r);
-                  if (!p.material_name.empty())
-                      p.material = material(p.material_name, ptr + "/material");
-                  // Property names: one for a size or a label, three for a normal or a colour.
-                  auto names = [&](const char* key, const std::string& v, size_t n) {
-                      if (v.empty() || v == "none") return;
-                      const size_t got =
-                          static_cast<size_t>(std::count(v.begin(), v.end(), ',')) + 1;
-                      if (got != n)
-                          problems.push_back(
-                              {ptr + "/" + key,
-                               "expected " +
-                                   std::string(n == 1 ? "one property name"
-                                                      : "three property names, comma-separated") +
-                                   ", \"none\" or \"\", got \"" + v + "\""});
-                  };
-                  names("size", p.size, 1), names("label", p.label, 1);
-                  names("normal", p.normal, 3), names("color", p.color, 3);
-                  s.particles.push_back(p);
-              });
+    read_list(
+        doc, "particles", "/particles", problems, plain,
+        [&](const json&, Reader& r, const std::string& ptr) {
+            ParticleFileDesc p;
+            visit_particle_file(p, r);
+            if (!p.material_name.empty()) p.material = material(p.material_name, ptr + "/material");
+            if (!p.material_list.empty())
+                for (const std::string& name : split_names(p.material_list))
+                    p.materials.push_back(material(name, ptr + "/materials"));
+            if (!p.material_by.empty() && p.materials.empty())
+                problems.push_back({ptr + "/materials",
+                                    "expected the materials material_by picks from, "
+                                    "comma-separated"});
+            if (p.material_by.empty() && p.material_name.empty())
+                problems.push_back({ptr + "/material",
+                                    "required (or material_by and materials, one per particle)"});
+            // Property names: one for a size or a label, three for a normal or a colour.
+            auto names = [&](const char* key, const std::string& v, size_t n) {
+                if (v.empty() || v == "none") return;
+                const size_t got = static_cast<size_t>(std::count(v.begin(), v.end(), ',')) + 1;
+                if (got != n)
+                    problems.push_back(
+                        {ptr + "/" + key,
+                         "expected " +
+                             std::string(n == 1 ? "one property name"
+                                                : "three property names, comma-separated") +
+                             ", \"none\" or \"\", got \"" + v + "\""});
+            };
+            names("size", p.size, 1), names("label", p.label, 1);
+            names("normal", p.normal, 3), names("color", p.color, 3);
+            s.particles.push_back(p);
+        });
 }
 
 // Each particle file read and turned into strokes now, so a broken file is refused with the

@@ -171,7 +171,7 @@ void add_imported(const SceneDesc& s, BuiltLandscape& out) {
             c.append(all, first, n);
             out.chunks.push_back(std::move(c));
             out.chunk_size.push_back(1.0f);
-            out.chunk_source.push_back({p.particles.get(), first, p.color_amount});
+            out.chunk_source.push_back({p.particles.get(), first, p.color_amount, p.casts_shadows});
         }
     }
 }

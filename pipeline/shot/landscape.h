@@ -31,6 +31,7 @@ struct BuiltLandscape {
         const ImportedParticles* file = nullptr;
         size_t first = 0;
         float color_amount = 0;
+        bool casts_shadows = false;  // the file's particles cast the sun's shadows
     };
     std::vector<ChunkSource> chunk_source;                           // one per chunk
     std::vector<std::shared_ptr<const ImportedParticles>> imported;  // keeps them alive

@@ -22,7 +22,10 @@ ShotPlan plan_shot(const SceneDesc& scene, const ShotOptions& options) {
     ShotPlan plan;
     plan.bark = scene.build.bark_coverage > 0;
     const bool meshes = scene.terrain.present || !scene.rocks.empty();
-    plan.shadows = scene.sun_casts_shadows && (meshes || !scene.trees.empty());
+    const bool casting_particles =
+        std::any_of(scene.particles.begin(), scene.particles.end(),
+                    [](const ParticleFileDesc& p) { return p.casts_shadows; });
+    plan.shadows = scene.sun_casts_shadows && (meshes || !scene.trees.empty() || casting_particles);
     plan.sun_moves = plan.shadows && !scene.sun_track.empty();
     plan.underpaint = meshes;
     plan.sun_light = plan.shadows && !plan.sun_moves && options.cache_sun_light &&
@@ -99,6 +102,45 @@ void leaf_casters(const SceneDesc& scene, const BuiltTree& b, const glm::vec3& s
     }
 }
 
+std::vector<std::vector<StrokeCaster>> imported_casters(const Shot& shot, const glm::vec3& sun) {
+    const SceneDesc& scene = shot.scene;
+    const BuiltLandscape& land = *shot.land;
+    std::vector<std::vector<StrokeCaster>> out(scene.materials.size());
+    const glm::vec3 ref = std::abs(sun.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+    const glm::vec3 a0 = glm::normalize(glm::cross(ref, sun)), b0 = glm::cross(sun, a0);
+    const ParticleSource particles = shot.particles();
+    const size_t trees = shot.trees->size();
+    for (size_t c = 0; c < land.chunks.size(); ++c) {
+        if (c >= land.chunk_source.size() || !land.chunk_source[c].file ||
+            !land.chunk_source[c].casts_shadows)
+            continue;
+        const SurfaceParticles& S = land.chunks[c];
+        for (size_t j = 0; j < S.size(); ++j) {
+            MaterialId mat;
+            const ParticleInput in =
+                particle_input(particles, trees + c, SpriteKind::kSurface, j,
+                               particle_origin(particles, trees + c, SpriteKind::kSurface, j), mat);
+            const StrokeShaderParams& p = *shot.materials[mat].shader;
+            // The same card as a leaf stroke's: facing the sun, turned by the stroke's angle
+            // jitter, the stroke's size and noise.
+            StrokeCaster k;
+            k.center = in.world;
+            const float jitter = stroke_size_jitter(p, in.label);
+            const double ang = stroke_angle_jitter(p, in.label);
+            const float ca = static_cast<float>(pmath::cos(ang)),
+                        sa = static_cast<float>(pmath::sin(ang));
+            k.axis_s = ca * a0 + sa * b0;
+            k.axis_t = -sa * a0 + ca * b0;
+            k.half_w = static_cast<float>(0.5 * in.width * jitter);
+            k.half_l = k.half_w * p.stroke_aspect;
+            k.noise = noise_of(stroke_constants(p, glm::dot(in.normal, sun), 0.5f, 0.5f, in.label,
+                                                0, 1.0f, 0.0f, 0.0f, false, false));
+            out[S.material[j]].push_back(k);
+        }
+    }
+    return out;
+}
+
 float sun_light_at(const RayScene& sun_rays, const RayOrigin& o, const glm::vec3& sun,
                    ShadowMode mode) {
     return sun_rays.transmittance(o.lifted(), sun, mode, std::numeric_limits<float>::infinity(),
@@ -133,6 +175,12 @@ std::unique_ptr<RayScene> build_sun_scene(const Shot& shot, const glm::vec3& sun
         if (!casters[f].empty())
             rays->add_casters(casters[f], scene.families[f].leaf_shader,
                               shot.materials[shot.materials.leaf(f)].edge);
+    // Particles from other tools cast like leaf strokes, one caster set per material.
+    std::vector<std::vector<StrokeCaster>> by_material = imported_casters(shot, sun);
+    for (uint32_t m = 0; m < by_material.size(); ++m)
+        if (!by_material[m].empty())
+            rays->add_casters(by_material[m], scene.materials[m].shader,
+                              shot.materials[shot.materials.surface(m)].edge);
     rays->commit();
     return rays;
 }

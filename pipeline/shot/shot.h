@@ -31,6 +31,10 @@ void leaf_casters(const SceneDesc& scene, const BuiltTree& tree, const glm::vec3
 
 struct Shot;
 
+// The particle files' strokes that cast shadows (ParticleFileDesc::casts_shadows), as cards
+// facing the sun like leaf strokes', per scene material.
+std::vector<std::vector<StrokeCaster>> imported_casters(const Shot& shot, const glm::vec3& sun);
+
 struct ShotOptions {
     // Each particle's light from a still sun, traced once for every frame (animations); off,
     // frames trace it for the particles they show (a still traces fewer rays that way). The

@@ -11,9 +11,9 @@
 #include <glm/geometric.hpp>
 #include <set>
 
+#include "pipeline/frame/paint_frame.h"
 #include "pipeline/input/error.h"
 #include "pipeline/input/limits.h"
-#include "pipeline/frame/paint_frame.h"
 #include "pipeline/input/ply.h"
 #include "pipeline/input/scene.h"
 #include "ply_writer.h"
@@ -342,6 +342,118 @@ TEST_F(ParticleScene, ABrokenFileIsOneLineAndNothingIsWritten) {
     EXPECT_NE(a.err.find("/particles/0/normal: expected three property names, comma-separated"),
               std::string::npos)
         << a.err;
+}
+
+}  // namespace
+}  // namespace pleinair
+
+namespace pleinair {
+namespace {
+
+TEST(ParticleFiles, AClassPropertyPicksEachParticlesMaterial) {
+    std::vector<PlyColumn> c = three_points();
+    c.push_back({"uchar", "class", {2, 0, 1}});
+    ParticleFileDesc d;
+    d.material_by = "class";
+    d.materials = {5, 3, 9};
+    const ImportedParticles p = import(write_ply(c, "ascii"), d);
+    EXPECT_EQ(p.strokes.material, (std::vector<uint16_t>{9, 5, 3}));
+    // A value past the list, a float class, a class the file lacks: one line naming them.
+    c.back().values = {2, 3, 0};
+    EXPECT_EQ(error_of([&] { import(write_ply(c, "ascii"), d); }),
+              "cloud.ply: vertex 1 property class: a material index must be in 0..2 "
+              "(/particles/N/materials lists 3), got 3");
+    c.back().type = "float";
+    EXPECT_NE(error_of([&] {
+                  import(write_ply(c, "ascii"), d);
+              }).find("property class: a material index must be an integer type, got float"),
+              std::string::npos);
+    c.pop_back();
+    EXPECT_NE(
+        error_of([&] { import(write_ply(c, "ascii"), d); }).find("no vertex property \"class\""),
+        std::string::npos);
+}
+
+// A crown of particles (class 1) floating above a bed of ground particles (class 0) in one file.
+std::vector<PlyColumn> crown_over_ground() {
+    std::vector<PlyColumn> c = {{"float", "x", {}},    {"float", "y", {}},  {"float", "z", {}},
+                                {"float", "nx", {}},   {"float", "ny", {}}, {"float", "nz", {}},
+                                {"uchar", "class", {}}};
+    auto add = [&](double x, double y, double z, int cls) {
+        const double v[] = {x, y, z, 0, 1, 0, double(cls)};
+        for (size_t k = 0; k < 7; ++k) c[k].values.push_back(v[k]);
+    };
+    for (int i = -30; i <= 30; ++i)
+        for (int j = -30; j <= 30; ++j) add(0.1 * i, 0.0, 0.1 * j, 0);
+    for (int i = 0; i < 3000; ++i) {
+        const double a = i * 2.399963, h = 1.0 - 2.0 * (i + 0.5) / 3000;
+        const double r = std::sqrt(1 - h * h);
+        add(0.5 * r * std::cos(a), 1.5 + 0.5 * h, 0.5 * r * std::sin(a), 1);
+    }
+    return c;
+}
+
+TEST_F(ParticleScene, ParticlesCastTheSunsShadowsOnEachOther) {
+    write("crown.ply", write_ply(crown_over_ground(), "binary_little_endian"));
+    auto ground_light = [&](bool casts) {
+        const std::string json =
+            R"({"camera": {"position": [0, 1.5, 6], "look_at": [0, 0.5, 0], "width": 64, "height": 48},
+                "sun": {"direction": [0, 1, 0], "casts_shadows": true},
+                "materials": {"grass": {"shader": "grass"}, "leaves": {"shader": "grass"}},
+                "particles": [{"file": "crown.ply", "material_by": "class",
+                               "materials": "grass, leaves", "casts_shadows": )" +
+            std::string(casts ? "true" : "false") + "}]}";
+        ShotOptions options;
+        options.cache_sun_light = true;
+        const Shot shot = build_shot(parse_scene(json, (dir / "s.json").string()), options);
+        // Nothing else casts: without the particles no shadow is traced, all light is 1.
+        EXPECT_EQ(shot.plan.shadows, casts);
+        if (!casts) return std::make_pair(1.0, 1.0);
+        // Each ground particle's light (material 0): under the crown (within 0.3 of the axis)
+        // and away from it and its strokes' reach (beyond 1.6).
+        double under = 0, away = 0;
+        int n_under = 0, n_away = 0;
+        const size_t trees = shot.trees->size();
+        for (size_t c = 0; c < shot.land->chunks.size(); ++c) {
+            const SurfaceParticles& S = shot.land->chunks[c];
+            for (size_t j = 0; j < S.size(); ++j) {
+                if (S.material[j] != 0) continue;
+                const float r = glm::length(glm::vec2(S.position[j].x, S.position[j].z));
+                const float l = shot.sun_light[trees + c][j];
+                if (r < 0.3f) under += l, ++n_under;
+                if (r > 1.6f) away += l, ++n_away;
+            }
+        }
+        EXPECT_GT(n_under, 20);
+        EXPECT_GT(n_away, 20);
+        return std::make_pair(under / n_under, away / n_away);
+    };
+    const auto [under, away] = ground_light(true);
+    EXPECT_LT(under, 0.5 * away);  // the crown's shadow
+    EXPECT_GT(away, 0.95);
+    ground_light(false);
+}
+
+TEST_F(ParticleScene, AMaterialListWithoutItsPropertyOrNoMaterialIsNamed) {
+    write("cloud.ply", write_ply(three_points(), "ascii"));
+    auto problem = [&](const std::string& entry) {
+        const std::string json =
+            R"({"materials": {"grass": {"shader": "grass"}}, "particles": [)" + entry + "]}";
+        try {
+            parse_scene(json, (dir / "s.json").string());
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    EXPECT_NE(problem(R"({"file": "cloud.ply"})").find("/particles/0/material: required"),
+              std::string::npos);
+    EXPECT_NE(problem(R"({"file": "cloud.ply", "material_by": "id"})")
+                  .find("/particles/0/materials: expected the materials"),
+              std::string::npos);
+    EXPECT_NE(problem(R"({"file": "cloud.ply", "material_by": "id", "materials": "grass, moss"})")
+                  .find("/particles/0/materials"),
+              std::string::npos);
 }
 
 }  // namespace
