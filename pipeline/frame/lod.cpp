@@ -218,11 +218,11 @@ ParticleLod particle_lod(const Shot& shot, const FrameLod& lod, size_t item, Spr
     const BuiltTree& b = trees[item];
     if (kind == SpriteKind::kBark) {
         if (lod.trunks)
-            out.fade = bark_fade(t.trunk, b.tree.branches[b.bark.limb[j]].level, b.bark.label[j],
-                                 lod.fade_gain);
+            out.fade = bark_fade(t.trunk, b.tree().branches[b.bark().limb[j]].level,
+                                 b.bark().label[j], lod.fade_gain);
         return out;
     }
-    const LeafParticles& L = b.tree.leaves;
+    const LeafParticles& L = b.tree().leaves;
     if (lod.leaves) {
         out.fade = leaf_fade(t.leaf, L.fade_begin[j], L.fade_end[j], lod.fade_gain);
         out.lod_distance = t.darkening_lift;
@@ -294,7 +294,7 @@ FrameLod level_of_detail(const Shot& shot, const FrameView& view, const RenderSe
     tbb::parallel_for(size_t{0}, trees.size(), [&](size_t i) {
         const BuiltTree& b = trees[i];
         TreeLod& t = lod.trees[i];
-        const glm::dvec3 center = shot.placements[i].place(b.tree.center);
+        const glm::dvec3 center = shot.placements[i].place(b.tree().center);
         const FadeParams& fp = shot.scene.families[b.family].params.leaves.fade;
         const double leaf_rate = max_fade_rate(std::max(fp.length_min, fp.length.lo), rs.fade_gain);
         const double trunk_rate = max_fade_rate(kBarkFadeSpan, rs.fade_gain);
@@ -315,7 +315,7 @@ FrameLod level_of_detail(const Shot& shot, const FrameView& view, const RenderSe
         }
         if (!lod.trunks) t.trunk = 0;
         if (!lod.leaves) return;
-        const LeafParticles& L = b.tree.leaves;
+        const LeafParticles& L = b.tree().leaves;
         if (L.size() == 0 || t.leaf <= 0) return;
         // Interior darkening stands for shade cast by outer leaves (IV.4.1); as they fade it
         // weakens (IV.6), by as much as keeps the survivors' mean lightness the whole tree's.
@@ -342,7 +342,7 @@ FrameLod level_of_detail(const Shot& shot, const FrameView& view, const RenderSe
         t.kept = static_cast<float>(sum / static_cast<double>(L.size()));
         const float floor = pmath::pow(max_growth, -1.0f / kGrowthPower);
         t.growth = std::min(max_growth, pmath::pow(std::max(t.kept, floor), -kGrowthPower));
-        radial_spread(L, alpha, b.tree.center, max_growth, t);
+        radial_spread(L, alpha, b.tree().center, max_growth, t);
     });
     return lod;
 }

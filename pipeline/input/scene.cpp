@@ -873,6 +873,7 @@ void parse_families(const json& doc, const std::string& source, SceneDesc& s,
             r.text("bark_palette", bark_palette, "");
             r.text("style", family.style, "");
             r.text("imposters", family.imposters_name, "");
+            r.integer("members", family.members, {0, 1000000}, "");
             r.claim("tree");
             r.claim("leaf_shader_keys");
             r.claim("bark_shader_keys");
@@ -1223,7 +1224,7 @@ std::string scene_reference() {
     });
     d.object("particles/N",
              "A file of particles made by another tool, painted as strokes with a material "
-             "(they cast no shadows and never fade with distance)",
+             "(they cast and receive the sun's shadows and never fade with distance)",
              [&] {
                  ParticleFileDesc p;
                  visit_particle_file(p, d);

@@ -72,6 +72,10 @@ struct Material {
     // Graftal imposters (file 002) on the silhouettes of its rocks and terrain, or null.
     std::shared_ptr<const ImposterDesc> imposters;
     std::string imposters_name;  // as written
+    // Trees grown for the family (instancing): its trees are drawn from this many, each placed
+    // with its own transform and stroke noise, sharing geometry and particles. 0: every tree
+    // grown from its own seed.
+    int members = 0;
 };
 
 // A disc of the terrain painted with its own material (a meadow, a sandy path, a patch of
@@ -143,6 +147,10 @@ struct Family {
     // Graftal imposters (file 002) on the silhouettes of its trunks and branches, or null.
     std::shared_ptr<const ImposterDesc> imposters;
     std::string imposters_name;  // as written
+    // Trees grown for the family (instancing): its trees are drawn from this many, each placed
+    // with its own transform and stroke noise, sharing geometry and particles. 0: every tree
+    // grown from its own seed.
+    int members = 0;
 };
 
 struct PlacedTree {

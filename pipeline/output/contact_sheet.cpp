@@ -83,11 +83,12 @@ Frame paint_contact_sheet(const Family& family, const std::vector<Tree>& trees,
     tbb::parallel_for(size_t{0}, trees.size(), [&](size_t i) {
         SceneDesc scene_i = scene;
         BuiltTree b;
-        b.tree = trees[i];
-        b.position = b.tree.origin;
-        if (bark) b.bark = family_bark(family, b.tree, o.build.bark_coverage, b.tree.seed);
-        std::vector<glm::vec3> pts = b.tree.render.positions;
-        pts.insert(pts.end(), b.tree.leaves.position.begin(), b.tree.leaves.position.end());
+        b.tree() = trees[i];
+        b.id = trees[i].id;
+        b.position = b.tree().origin;
+        if (bark) b.bark() = family_bark(family, b.tree(), o.build.bark_coverage, b.tree().seed);
+        std::vector<glm::vec3> pts = b.tree().render.positions;
+        pts.insert(pts.end(), b.tree().leaves.position.begin(), b.tree().leaves.position.end());
         Bounds bb = bounds_of(pts);
         // Frame the tree: its width (any direction about the trunk) and its height fit the
         // cell, with a margin, seen from slightly above its middle.
@@ -118,7 +119,7 @@ Frame paint_contact_sheet(const Family& family, const std::vector<Tree>& trees,
             std::copy_n(&cell.rgba[4 * static_cast<size_t>(y) * cell_w], 4 * cell_w,
                         &sheet.rgba[4 * (static_cast<size_t>(cy + y) * o.width + cx)]);
         int scale = std::clamp(cell_h / 120, 1, 4);
-        draw_label(sheet, cx + 2 * scale, cy + cell_h - 9 * scale, std::to_string(b.tree.seed),
+        draw_label(sheet, cx + 2 * scale, cy + cell_h - 9 * scale, std::to_string(b.tree().seed),
                    scale);
     });
     if (report)

@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include "shading/portable_math.h"
@@ -49,33 +50,80 @@ BarkParticles family_bark(const Family& family, const Tree& tree, float coverage
     return emit_bark(tree, bo, seed);
 }
 
+uint32_t tree_member(const SceneDesc& scene, size_t i) {
+    const PlacedTree& t = scene.trees[i];
+    const int m = scene.families[t.family].members;
+    if (m <= 0) return static_cast<uint32_t>(i);
+    // SplitMix64's finaliser: the seed's low bits alone would give neighbours' members.
+    uint64_t z = t.seed + 0x9e3779b97f4a7c15ull;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    z ^= z >> 31;
+    return static_cast<uint32_t>(z % static_cast<uint64_t>(m));
+}
+
 namespace {
 
-BuiltTree build_tree(const SceneDesc& scene, size_t i, bool bark) {
+// Tree i placed, its geometry grown (from tree `from`'s seed) unless `shared` holds it.
+BuiltTree build_tree(const SceneDesc& scene, size_t i, size_t from, bool bark,
+                     const BuiltTree* shared) {
     const PlacedTree& t = scene.trees[i];
     const Family& f = scene.families[t.family];
-    TreeOptions o;
-    o.tree_id = static_cast<uint32_t>(i);
-    o.lod = false;
     BuiltTree b;
-    b.tree = generate_tree(f.params, t.seed, o);
+    if (shared) {
+        b.grown = shared->grown, b.bark_strokes = shared->bark_strokes;
+    } else {
+        const PlacedTree& g = scene.trees[from];
+        TreeOptions o;
+        o.tree_id = static_cast<uint32_t>(from);
+        o.lod = false;
+        b.tree() = generate_tree(f.params, g.seed, o);
+        if (bark) b.bark() = family_bark(f, b.tree(), scene.build.bark_coverage, g.seed);
+    }
+    b.id = static_cast<uint32_t>(i);
+    b.member = tree_member(scene, i);
     b.family = t.family;
     b.position = t.position;
     // Catmull-Clark rounds the trunk's base into a dome: plant the tree deep enough that the
     // ground meets the trunk at its full width.
-    b.position.y -= b.tree.planting_depth * t.scale;
+    b.position.y -= b.tree().planting_depth * t.scale;
     b.rotation = t.rotation;
     b.scale = t.scale;
-    if (bark) b.bark = family_bark(f, b.tree, scene.build.bark_coverage, t.seed);
     return b;
+}
+
+// The trees of `which` built: each member's first tree grown (in parallel), then the others
+// sharing it. out[i] for i not in `which` is left as it is.
+void grow(const SceneDesc& scene, bool bark, const std::vector<size_t>& which,
+          std::vector<BuiltTree>& out) {
+    // The first tree of each (family, member), in scene order: the one whose seed grows it.
+    std::vector<size_t> first(scene.trees.size());
+    std::vector<size_t> growers;
+    {
+        std::map<std::pair<uint32_t, uint32_t>, size_t> seen;
+        for (size_t i : which) {
+            const auto key = std::make_pair(scene.trees[i].family, tree_member(scene, i));
+            auto [it, fresh] = seen.emplace(key, i);
+            first[i] = it->second;
+            if (fresh) growers.push_back(i);
+        }
+    }
+    tbb::parallel_for(size_t{0}, growers.size(), [&](size_t k) {
+        out[growers[k]] = build_tree(scene, growers[k], growers[k], bark, nullptr);
+    });
+    tbb::parallel_for(size_t{0}, which.size(), [&](size_t k) {
+        const size_t i = which[k];
+        if (first[i] != i) out[i] = build_tree(scene, i, first[i], bark, &out[first[i]]);
+    });
 }
 
 }  // namespace
 
 std::vector<BuiltTree> build_trees(const SceneDesc& scene, bool bark) {
     std::vector<BuiltTree> out(scene.trees.size());
-    tbb::parallel_for(size_t{0}, scene.trees.size(),
-                      [&](size_t i) { out[i] = build_tree(scene, i, bark); });
+    std::vector<size_t> all(scene.trees.size());
+    for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+    grow(scene, bark, all, out);
     return out;
 }
 
@@ -84,10 +132,12 @@ std::vector<BuiltTree> regrow_trees(const SceneDesc& scene, bool bark,
                                     const std::vector<bool>& regrow) {
     if (before.size() != scene.trees.size() || regrow.size() != scene.trees.size())
         throw std::logic_error("regrow_trees: the scene's trees are not those grown before");
+    // A member is regrown with all its trees (a family's edit reaches every tree of it).
     std::vector<BuiltTree> out(scene.trees.size());
-    tbb::parallel_for(size_t{0}, scene.trees.size(), [&](size_t i) {
-        out[i] = regrow[i] ? build_tree(scene, i, bark) : before[i];
-    });
+    std::vector<size_t> which;
+    for (size_t i = 0; i < scene.trees.size(); ++i)
+        regrow[i] ? which.push_back(i) : void(out[i] = before[i]);
+    grow(scene, bark, which, out);
     return out;
 }
 

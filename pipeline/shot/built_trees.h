@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
+#include <memory>
 #include <vector>
 
 #include "generators/bark.h"
@@ -15,8 +16,19 @@
 namespace pleinair {
 
 struct BuiltTree {
-    Tree tree;  // tree-local geometry; the transform below places it
-    BarkParticles bark;
+    // Tree-local geometry and bark strokes, which the transform below places: shared by every
+    // tree drawn from one member of its family (Family::members). Builders fill them in before
+    // they are shared; nothing changes them after.
+    std::shared_ptr<Tree> grown = std::make_shared<Tree>();
+    std::shared_ptr<BarkParticles> bark_strokes = std::make_shared<BarkParticles>();
+    Tree& tree() { return *grown; }
+    const Tree& tree() const { return *grown; }
+    BarkParticles& bark() { return *bark_strokes; }
+    const BarkParticles& bark() const { return *bark_strokes; }
+    // This tree's own number (its index in the scene): its strokes' noise and tint and its
+    // object id, so no two trees drawn from one member look stamped.
+    uint32_t id = 0;
+    uint32_t member = 0;  // which of its family's grown trees (its index when not shared)
     uint32_t family = 0;
     glm::dvec3 position{0.0};
     double rotation = 0;  // about +y, degrees
@@ -41,8 +53,13 @@ double tree_stroke_width(const Family& family, const StrokeShaderParams& shader,
 BarkParticles family_bark(const Family& family, const Tree& tree, float coverage, uint64_t seed);
 
 // Generates every tree of the scene (in parallel; the result does not depend on threads), with
-// bark strokes when `bark`.
+// bark strokes when `bark`. A family with members grows that many trees once, each from the
+// seed of the first of its trees to draw it, and its trees share them (tree_member).
 std::vector<BuiltTree> build_trees(const SceneDesc& scene, bool bark = true);
+
+// Which member of its family scene tree i is drawn from: drawn from its seed among the
+// family's members, or i itself when the family grows every tree (members 0).
+uint32_t tree_member(const SceneDesc& scene, size_t i);
 // The same where `regrow[i]`, the others copied from `before` (the trees the same scene grew
 // before a change that reached only those): what build_trees would give, for less work.
 std::vector<BuiltTree> regrow_trees(const SceneDesc& scene, bool bark,

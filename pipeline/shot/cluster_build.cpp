@@ -84,12 +84,12 @@ void bound_stroke(const ParticleSource& shot, size_t item, SpriteKind kind, size
     const std::vector<BuiltTree>& trees = shot.trees;
     float at = std::numeric_limits<float>::infinity();
     if (kind == SpriteKind::kLeaf) {
-        const LeafParticles& L = trees[item].tree.leaves;
+        const LeafParticles& L = trees[item].tree().leaves;
         at = std::max(L.fade_begin[j], L.fade_end[j]);
     } else if (kind == SpriteKind::kBark) {
         const BuiltTree& b = trees[item];
-        if (b.tree.branches[b.bark.limb[j]].level >= 2)
-            at = bark_fade_begin(b.bark.label[j]) + kBarkFadeSpan;
+        if (b.tree().branches[b.bark().limb[j]].level >= 2)
+            at = bark_fade_begin(b.bark().label[j]) + kBarkFadeSpan;
     } else {
         const SurfaceParticles& S = shot.land.chunks[item - trees.size()];
         if (!(S.fade_begin(j) > 1.0f)) at = std::max(S.fade_begin(j), S.fade_end(j));
@@ -124,7 +124,7 @@ void cluster_kind(const ParticleSource& shot, size_t item, SpriteKind kind, size
     glm::vec3 center(0.0f);
     float reach = 0;
     if (kind == SpriteKind::kLeaf) {
-        center = trees[item].tree.center;
+        center = trees[item].tree().center;
         for (size_t j = 0; j < n; ++j) reach = std::max(reach, glm::length(pos(j) - center));
         reach *= 1.0001f;
     }
@@ -172,9 +172,9 @@ std::vector<ItemClusters> build_clusters(const ParticleSource& shot) {
         const BuiltTree& b = trees[i];
         if (shot.bark)
             cluster_kind(
-                shot, i, SpriteKind::kBark, b.bark.size(),
-                [&](size_t j) { return b.bark.position[j]; }, out);
-        const LeafParticles& L = b.tree.leaves;
+                shot, i, SpriteKind::kBark, b.bark().size(),
+                [&](size_t j) { return b.bark().position[j]; }, out);
+        const LeafParticles& L = b.tree().leaves;
         cluster_kind(
             shot, i, SpriteKind::kLeaf, L.size(), [&](size_t j) { return L.position[j]; }, out);
     });

@@ -188,7 +188,7 @@ std::vector<ShotGraftals> build_graftals(const SceneDesc& scene,
         const BuiltTree& b = trees[i];
         const Family& fam = scene.families[b.family];
         if (!fam.graftal) continue;
-        const LeafParticles& L = b.tree.leaves;
+        const LeafParticles& L = b.tree().leaves;
         const TreePlacement& pl = placements[i];
         std::vector<glm::dvec3> world(L.size());
         std::vector<glm::vec3> normals(L.size());
@@ -196,9 +196,8 @@ std::vector<ShotGraftals> build_graftals(const SceneDesc& scene,
             world[j] = pl.place(L.position[j]), normals[j] = pl.turn(L.normal[j]);
         GraftalDesc scaled = *fam.graftal;
         scaled.length *= static_cast<float>(b.scale);  // a tree's graftals grow with it
-        out.push_back(
-            group_of(std::make_shared<const GraftalDesc>(std::move(scaled)),
-                     leaf_sites(*fam.graftal, world, normals, kGraftalSeed, b.tree.id + 1)));
+        out.push_back(group_of(std::make_shared<const GraftalDesc>(std::move(scaled)),
+                               leaf_sites(*fam.graftal, world, normals, kGraftalSeed, b.id + 1)));
     }
     for (size_t m = 0; m < scene.materials.size(); ++m) {
         const auto& desc = scene.materials[m].graftal;

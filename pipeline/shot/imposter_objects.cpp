@@ -103,11 +103,10 @@ std::vector<ImposterObject> build_imposters(const SceneDesc& scene,
         const auto& desc = scene.families[b.family].imposters;
         if (!desc) continue;
         const QuadMesh& mesh =
-            desc->mesh == ImposterMesh::kControl ? b.tree.control : b.tree.render;
+            desc->mesh == ImposterMesh::kControl ? b.tree().control : b.tree().render;
         const TreePlacement& pl = placements[i];
-        out.push_back(make_imposter_object(desc, mesh, pl.position, pl.linear(), pl.scale,
-                                           b.tree.id + 1, hash_keys(0x74726565ull, b.tree.id), {},
-                                           atlas_of(desc)));
+        out.push_back(make_imposter_object(desc, mesh, pl.position, pl.linear(), pl.scale, b.id + 1,
+                                           hash_keys(0x74726565ull, b.id), {}, atlas_of(desc)));
     }
     for (size_t m = 0; m < scene.materials.size(); ++m) {
         const auto& desc = scene.materials[m].imposters;

@@ -59,17 +59,17 @@ ParticleInput particle_input(const ParticleSource& shot, size_t item, SpriteKind
     in.length = in.width * p.stroke_aspect;
     if (bark) {
         in.normal = o.normal;
-        in.tangent = pl.turn(b.bark.tangent[j]);
-        in.label = b.bark.label[j];
-        in.tree_id = b.tree.id;
+        in.tangent = pl.turn(b.bark().tangent[j]);
+        in.label = b.bark().label[j];
+        in.tree_id = b.id;
     } else {
-        const LeafParticles& L = b.tree.leaves;
+        const LeafParticles& L = b.tree().leaves;
         in.normal = pl.turn(L.normal[j]);
         in.center_distance = L.center_distance[j];
         in.branch_distance = L.branch_distance[j];
         in.label = L.label[j];
-        in.tree_id = L.tree_id[j];
-        const glm::vec3 out = L.position[j] - b.tree.center;
+        in.tree_id = b.id;
+        const glm::vec3 out = L.position[j] - b.tree().center;
         const float len = glm::length(out);
         if (len > 1e-6f && std::isfinite(len)) in.from_center = pl.turn(out / len);
         in.hole =
@@ -88,20 +88,20 @@ RayOrigin particle_origin(const ParticleSource& shot, size_t item, SpriteKind ki
     const TreePlacement& pl = shot.placements[item];
     if (kind == SpriteKind::kBark)
         return RayOrigin{
-            pl.place(b.bark.position[j]), pl.turn(b.bark.normal[j]), true,
+            pl.place(b.bark().position[j]), pl.turn(b.bark().normal[j]), true,
             static_cast<float>(0.02 * shot.scene.families[b.family].params.unit * b.scale)};
-    return RayOrigin{pl.place(b.tree.leaves.position[j]), glm::vec3(0.0f), false, 0.0f};
+    return RayOrigin{pl.place(b.tree().leaves.position[j]), glm::vec3(0.0f), false, 0.0f};
 }
 
 size_t item_particles(const ParticleSource& shot, size_t item) {
     const std::vector<BuiltTree>& trees = shot.trees;
     if (item >= trees.size()) return shot.land.chunks[item - trees.size()].size();
-    return (shot.bark ? trees[item].bark.size() : 0) + trees[item].tree.leaves.size();
+    return (shot.bark ? trees[item].bark().size() : 0) + trees[item].tree().leaves.size();
 }
 
 size_t particle_slot(const ParticleSource& shot, size_t item, SpriteKind kind, size_t j) {
     if (kind != SpriteKind::kLeaf) return j;
-    return shot.bark ? (shot.trees)[item].bark.size() + j : j;
+    return shot.bark ? shot.trees[item].bark().size() + j : j;
 }
 
 }  // namespace pleinair

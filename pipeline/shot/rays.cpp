@@ -128,7 +128,12 @@ void caster_filter(const RTCFilterFunctionNArguments* args) {
 
 void fill_ray(RTCRay& r, const glm::dvec3& world, const glm::dvec3& anchor, const glm::vec3& d,
               float tmax, const glm::vec3* n) {
-    const float eps = ray_epsilon(world);
+    // Embree sees coordinates relative to the anchor, in float: their size sets the spacing, so
+    // a tree far from the world's origin traces as the same tree near it. A point on a surface
+    // (given its normal) may come from float world coordinates (terrain strokes): its offset
+    // covers their spacing too.
+    const float eps =
+        n ? std::max(ray_epsilon(world), ray_epsilon(world - anchor)) : ray_epsilon(world - anchor);
     glm::vec3 o(world - anchor);
     if (n) o += (glm::dot(*n, d) < 0 ? -*n : *n) * eps;
     r.org_x = o.x, r.org_y = o.y, r.org_z = o.z;

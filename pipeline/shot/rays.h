@@ -32,7 +32,8 @@ inline constexpr const char* kPortableRayDevice = "isa=sse2";
 void set_ray_device_config(const std::string& config);
 
 // The offset that lifts a ray origin off the surface it starts on: 32 float ulps of its
-// largest world coordinate, never less than those of 1.
+// largest coordinate (relative to the ray scene's anchor, as Embree sees it), never less than
+// those of 1.
 float ray_epsilon(const glm::dvec3& world_point);
 
 // Flush-to-zero and denormals-are-zero for the current thread while in scope (Embree asks for

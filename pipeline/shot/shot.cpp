@@ -9,6 +9,7 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <limits>
+#include <map>
 
 #include "pipeline/shot/cluster_build.h"
 #include "shading/pigment.h"
@@ -46,7 +47,7 @@ std::unique_ptr<RayScene> build_view_scene(const Shot& shot, std::vector<ViewSur
             surfaces.push_back({false, shot.materials.surface(scene.rocks[i].material)});
     const std::vector<BuiltTree>& trees = *shot.trees;
     for (size_t i = 0; i < trees.size(); ++i)
-        rays->add_instance(static_cast<uint32_t>(i), shot.placements[i].linear(),
+        rays->add_instance(shot.limb_mesh[i], shot.placements[i].linear(),
                            shot.placements[i].position),
             surfaces.push_back({false, shot.materials.bark(trees[i].family)});
     rays->commit();
@@ -71,7 +72,7 @@ std::vector<std::vector<float>> trace_sun_light(const Shot& shot) {
 
 std::vector<StrokeCaster> leaf_casters(const SceneDesc& scene, const BuiltTree& b,
                                        const glm::vec3& sun) {
-    std::vector<StrokeCaster> out(b.tree.leaves.size());
+    std::vector<StrokeCaster> out(b.tree().leaves.size());
     leaf_casters(scene, b, sun, out.data());
     return out;
 }
@@ -80,7 +81,7 @@ void leaf_casters(const SceneDesc& scene, const BuiltTree& b, const glm::vec3& s
                   StrokeCaster* out) {
     const TreePlacement pl = placement(b);
     const StrokeShaderParams& p = scene.families[b.family].leaf_shader;
-    const LeafParticles& L = b.tree.leaves;
+    const LeafParticles& L = b.tree().leaves;
     const double w = tree_stroke_width(scene.families[b.family], p, b.scale);
     // A frame perpendicular to the sun; each card turned by its stroke's angle jitter.
     const glm::vec3 ref = std::abs(sun.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
@@ -98,7 +99,7 @@ void leaf_casters(const SceneDesc& scene, const BuiltTree& b, const glm::vec3& s
         c.half_l = c.half_w * p.stroke_aspect;
         c.noise = noise_of(stroke_constants(p, glm::dot(pl.turn(L.normal[j]), sun),
                                             L.center_distance[j], L.branch_distance[j], L.label[j],
-                                            L.tree_id[j], 1.0f, 0.0f, 0.0f, false, false));
+                                            b.id, 1.0f, 0.0f, 0.0f, false, false));
     }
 }
 
@@ -157,7 +158,7 @@ std::unique_ptr<RayScene> build_sun_scene(const Shot& shot, const glm::vec3& sun
     if (land.has_terrain) rays->add_mesh(land.terrain_mesh);
     for (const auto& r : land.rocks) rays->add_mesh(r);
     for (size_t i = 0; i < trees.size(); ++i)
-        rays->add_instance(static_cast<uint32_t>(i), shot.placements[i].linear(),
+        rays->add_instance(shot.limb_mesh[i], shot.placements[i].linear(),
                            shot.placements[i].position);
     // Leaf strokes as cards facing the sun, one caster set per family's leaf shader, each in
     // tree order whatever the threads did.
@@ -166,7 +167,7 @@ std::unique_ptr<RayScene> build_sun_scene(const Shot& shot, const glm::vec3& sun
     std::vector<size_t> offset(trees.size());
     for (size_t i = 0; i < trees.size(); ++i) {
         offset[i] = casters[trees[i].family].size();
-        casters[trees[i].family].resize(offset[i] + trees[i].tree.leaves.size());
+        casters[trees[i].family].resize(offset[i] + trees[i].tree().leaves.size());
     }
     tbb::parallel_for(size_t{0}, trees.size(), [&](size_t i) {
         leaf_casters(scene, trees[i], sun, casters[trees[i].family].data() + offset[i]);
@@ -191,7 +192,7 @@ Shot build_shot(SceneDesc scene, const ShotOptions& options) {
     auto trees = std::make_shared<const std::vector<BuiltTree>>(build_trees(scene, plan.bark));
     auto land = std::make_shared<const BuiltLandscape>(build_landscape(scene));
     size_t leaves = 0, bark = 0;
-    for (const auto& t : *trees) leaves += t.tree.leaves.size(), bark += t.bark.size();
+    for (const auto& t : *trees) leaves += t.tree().leaves.size(), bark += t.bark().size();
     PassReport generate{"generate", true,
                         "trees grown from their presets, surfaces turned into strokes", timer.ms(),
                         std::to_string(trees->size()) + " trees, " + std::to_string(leaves) +
@@ -304,7 +305,13 @@ Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> t
     if (plan.underpaint || plan.shadows) {
         PassTimer timer;
         shot.limbs = std::make_unique<RayMeshes>();
-        for (const BuiltTree& b : *shot.trees) shot.limbs->add(b.tree.render);
+        // One mesh per grown tree: the trees drawn from one member share it.
+        std::map<const Tree*, uint32_t> mesh;
+        for (const BuiltTree& b : *shot.trees) {
+            auto [it, fresh] = mesh.emplace(&b.tree(), 0u);
+            if (fresh) it->second = shot.limbs->add(b.tree().render);
+            shot.limb_mesh.push_back(it->second);
+        }
         shot.limbs->commit();
         const glm::vec3 sun(shot.scene.sun_direction);
         // The two scenes only read what they share (the device, the committed limbs): built
@@ -319,7 +326,8 @@ Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> t
             sun_scene();
         shot.passes.push_back(
             {"ray scenes", true, "Embree scenes the plan asks for", timer.ms(),
-             std::to_string(shot.limbs->size()) + " trees' limbs built once and placed in each; " +
+             std::to_string(shot.limbs->size()) + " trees' limbs built once and placed " +
+                 std::to_string(shot.limb_mesh.size()) + " times in each; " +
                  (shot.view_rays
                       ? std::to_string(shot.view_rays->mesh_count()) + " meshes for the camera"
                       : std::string("no camera scene")) +

@@ -25,7 +25,7 @@ namespace pleinair {
 // strokes, with the same noise (IV.4.2).
 std::vector<StrokeCaster> leaf_casters(const SceneDesc& scene, const BuiltTree& tree,
                                        const glm::vec3& sun);
-// The same, written to out[0 .. tree.tree.leaves.size() - 1].
+// The same, written to out[0 .. tree.tree().leaves.size() - 1].
 void leaf_casters(const SceneDesc& scene, const BuiltTree& tree, const glm::vec3& sun,
                   StrokeCaster* out);
 
@@ -78,6 +78,7 @@ struct Shot {
     // sun's; the anchor (the still camera's eye) keeps far landscapes precise in float.
     glm::dvec3 anchor{0.0};
     std::unique_ptr<RayMeshes> limbs;
+    std::vector<uint32_t> limb_mesh;      // per tree, its grown tree's mesh in `limbs`
     std::unique_ptr<RayScene> view_rays;  // plan.underpaint
     std::vector<ViewSurface> view_surfaces;
     std::unique_ptr<RayScene> sun_rays;  // plan.shadows and a still sun
@@ -164,13 +165,13 @@ void for_each_particle(const Shot& shot, size_t item, Fn&& fn) {
     const BuiltTree& b = trees[item];
     const TreePlacement& pl = shot.placements[item];
     if (shot.plan.bark) {
-        const BarkParticles& B = b.bark;
+        const BarkParticles& B = b.bark();
         const float lift = bark_ray_lift(shot, b);
         for (size_t j = 0; j < B.size(); ++j)
             fn(SpriteKind::kBark, j,
                RayOrigin{pl.place(B.position[j]), pl.turn(B.normal[j]), true, lift});
     }
-    const LeafParticles& L = b.tree.leaves;
+    const LeafParticles& L = b.tree().leaves;
     for (size_t j = 0; j < L.size(); ++j)
         fn(SpriteKind::kLeaf, j, RayOrigin{pl.place(L.position[j]), glm::vec3(0.0f), false, 0.0f});
 }

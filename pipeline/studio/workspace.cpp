@@ -453,8 +453,8 @@ std::vector<std::pair<std::string, std::string>> Workspace::framing() const {
             hi = glm::max(hi, w);
         };
         grow(glm::vec3(0.0f));
-        for (const glm::vec3& p : b.tree.leaves.position) grow(p);
-        for (const glm::vec3& p : b.tree.control.positions) grow(p);
+        for (const glm::vec3& p : b.tree().leaves.position) grow(p);
+        for (const glm::vec3& p : b.tree().control.positions) grow(p);
     }
     if (trees.empty()) return {};
     const CameraParams& cp = scene_.camera_params;

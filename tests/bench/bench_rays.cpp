@@ -36,7 +36,7 @@ struct Fixture {
         sun = glm::vec3(scene.sun_direction);
         const glm::dvec3 anchor = scene.camera.eye;
         // As the painter builds them: each tree's limbs once, placed by instances.
-        for (const BuiltTree& b : trees) limbs.add(b.tree.render);
+        for (const BuiltTree& b : trees) limbs.add(b.tree().render);
         limbs.commit();
         filtered = std::make_unique<RayScene>(anchor, &limbs);
         opaque = std::make_unique<RayScene>(anchor, &limbs);

@@ -8,8 +8,8 @@
 
 #include "pipeline/frame/lod.h"
 #include "pipeline/frame/paint_frame.h"
-#include "pipeline/shot/shot.h"
 #include "pipeline/frame/sprites.h"
+#include "pipeline/shot/shot.h"
 #include "shading/stroke_shader.h"
 
 namespace pleinair {
@@ -74,11 +74,11 @@ CrownStats crown_stats(bool corot) {
     size_t n = 0, ni = 0, no = 0;
     for (const Sprite& sp : set.sprites) {
         if (sp.kind != SpriteKind::kLeaf) continue;
-        const glm::vec3 local = b.tree.leaves.position[sp.particle] - b.tree.center;
+        const glm::vec3 local = b.tree().leaves.position[sp.particle] - b.tree().center;
         const double side = glm::dot(placement(b).turn(glm::normalize(local)), sun);
         const double l = sp.k.lightness;
         sx += side, sy += l, sxx += side * side, syy += l * l, sxy += side * l, ++n;
-        const float cd = b.tree.leaves.center_distance[sp.particle];
+        const float cd = b.tree().leaves.center_distance[sp.particle];
         if (cd < 0.4f) inner += sp.half_w, ++ni;
         if (cd > 0.85f) outer += sp.half_w, ++no;
     }

@@ -12,9 +12,9 @@
 #include <unordered_map>
 
 #include "pipeline/frame/paint_frame.h"
+#include "pipeline/frame/sprites.h"
 #include "pipeline/input/scene.h"
 #include "pipeline/shot/shot.h"
-#include "pipeline/frame/sprites.h"
 
 namespace pleinair {
 namespace {
@@ -155,7 +155,7 @@ TEST(LevelOfDetail, TreesLoseLeavesAsTheyRecedeAndSurvivorsGrow) {
         ASSERT_EQ(lod.trees.size(), 1u);
         const TreeLod& t = lod.trees[0];
         // The tree's value, at its centre locator's depth.
-        const glm::dvec3 c = shot.placements[0].place((*shot.trees)[0].tree.center);
+        const glm::dvec3 c = shot.placements[0].place((*shot.trees)[0].tree().center);
         EXPECT_FLOAT_EQ(t.leaf, circle_value(view_depth(view.camera, c), 20, 120));
         EXPECT_GE(t.leaf, last_value);
         EXPECT_LE(t.kept, last_kept);
@@ -180,8 +180,8 @@ TEST(LevelOfDetail, SurvivorsFillTheCrownsExtent) {
     const Shot shot = build_shot(oak_scene(500));
     const FrameLod lod = level_of_detail(shot, still_view(shot.scene), RenderSettings{});
     const TreeLod& t = lod.trees.at(0);
-    const LeafParticles& L = (*shot.trees)[0].tree.leaves;
-    const glm::vec3 c = (*shot.trees)[0].tree.center;
+    const LeafParticles& L = (*shot.trees)[0].tree().leaves;
+    const glm::vec3 c = (*shot.trees)[0].tree().center;
     double all = 0, kept = 0, moved = 0, w = 0;
     for (size_t j = 0; j < L.size(); ++j) {
         const double a =
@@ -269,7 +269,7 @@ TEST(LevelOfDetail, FewerSpritesFarAwayAndTheSameFromAnyThreadCount) {
 
 TEST(LevelOfDetail, NoNaNWithTheCameraInsideACrownOrAtATreesCentre) {
     const Shot shot = build_shot(oak_scene(10, R"(, "near_field": 8)"));
-    const glm::dvec3 c = shot.placements[0].place((*shot.trees)[0].tree.center);
+    const glm::dvec3 c = shot.placements[0].place((*shot.trees)[0].tree().center);
     const FrameSettings fs = scene_frame_settings(shot.scene);
     for (glm::dvec3 eye : {c, c + glm::dvec3(0.5, 0.2, 0.1), c + glm::dvec3(0, -2, 1)}) {
         for (glm::dvec3 dir : {glm::dvec3(0, 0, -1), glm::dvec3(0, 1, 0.01), glm::dvec3(1, 0, 0)}) {

@@ -209,7 +209,7 @@ SceneDesc bare_scene(const std::string& camera = kCamera) {
 
 BuiltTree hand_tree(const std::vector<glm::vec3>& points, glm::vec3 normal = {0, 0, 1}) {
     BuiltTree b;
-    LeafParticles& L = b.tree.leaves;
+    LeafParticles& L = b.tree().leaves;
     for (size_t i = 0; i < points.size(); ++i) {
         L.position.push_back(points[i]);
         L.normal.push_back(normal);

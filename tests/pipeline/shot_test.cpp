@@ -123,7 +123,7 @@ TEST(Shot, PlansOnlyWhatTheSceneNeeds) {
     s.build.bark_coverage = 0;
     const Shot bare = build_shot(s);
     EXPECT_FALSE(bare.plan.bark);
-    for (const BuiltTree& t : *bare.trees) EXPECT_EQ(t.bark.size(), 0u);
+    for (const BuiltTree& t : *bare.trees) EXPECT_EQ(t.bark().size(), 0u);
     // The view scene knows what each of its geometries is painted with underneath.
     const Shot shot = build_shot(lit_scene());
     ASSERT_EQ(shot.view_surfaces.size(), 1u + 1u + 1u + 2u);  // terrain, water, rock, 2 trees
@@ -168,7 +168,7 @@ TEST(Sprites, EveryParticleIsASpriteOrCulled) {
     const SpriteSet set =
         make_sprites({shot, view, plan, settings.render, lod, shot.sun_rays.get()});
     size_t particles = shot.land->stroke_count();
-    for (const BuiltTree& t : *shot.trees) particles += t.tree.leaves.size() + t.bark.size();
+    for (const BuiltTree& t : *shot.trees) particles += t.tree().leaves.size() + t.bark().size();
     EXPECT_EQ(set.sprites.size() + set.culled, particles);
     EXPECT_EQ(set.leaf + set.bark + set.surface, set.sprites.size());
     EXPECT_GT(set.hidden, 0u);
@@ -208,7 +208,7 @@ TEST(Sprites, PartlyHiddenStrokesAreDrawnByTheShareSeen) {
         if (sp.kind == SpriteKind::kLeaf) {
             const BuiltTree& b = (*shot.trees)[sp.item];
             fade /= crown_edge_fade(shot.scene.families[b.family].leaf_shader,
-                                    b.tree.leaves.center_distance[sp.particle]);
+                                    b.tree().leaves.center_distance[sp.particle]);
         }
         const bool third = std::abs(fade - 1.0f / 3.0f) < 1e-5f;
         const bool two = std::abs(fade - 2.0f / 3.0f) < 1e-5f;
@@ -484,7 +484,7 @@ TEST(Composite, CoverageCutoffBoundsTheErrorOfSkippedStrokes) {
         "families": {"oak": {"preset": "oak"}}, "trees": []})",
                               "test");
     BuiltTree t;
-    LeafParticles& L = t.tree.leaves;
+    LeafParticles& L = t.tree().leaves;
     for (int i = 0; i < 300; ++i) {
         L.position.push_back({0.01f * (i % 7), 0.01f * (i % 5), -0.01f * i});
         L.normal.push_back({0, 0, 1});
