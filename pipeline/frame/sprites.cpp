@@ -20,10 +20,9 @@ namespace pleinair {
 namespace {
 
 // One particle as the sprite maker reads it (particle_input.h), with what the level of detail
-// does to it and its draw for the thinning of small strokes.
+// does to it.
 struct SpriteInput : ParticleInput {
     ParticleLod lod;
-    float thin_draw = 0;  // uniform in [0, 1), the particle's own
 };
 
 // What every sprite of a frame shares.

@@ -70,17 +70,9 @@ Box placed(const TreePlacement& pl, const Box& local) {
     return out;
 }
 
-// Every stroke size bound and fade threshold of one particle into its cluster.
-void bound_stroke(const ParticleSource& shot, size_t item, SpriteKind kind, size_t j,
-                  ParticleCluster& c, float& gone) {
-    MaterialId mat;
-    const ParticleInput in = particle_input(shot, item, kind, j, RayOrigin{}, mat);
-    const StrokeShaderParams& p = *shot.materials[mat].shader;
-    const float edge = kind == SpriteKind::kLeaf ? crown_edge_size(p, in.center_distance) : 1.0f;
-    const float jitter = stroke_size_jitter(p, in.label);
-    c.stroke = std::max(c.stroke, static_cast<float>((in.width + in.length) * jitter * edge));
-    const double aspect = in.width > 0 ? in.length / in.width : 0.0;
-    c.min_px_factor = std::max(c.min_px_factor, static_cast<float>((1.0 + aspect) * edge));
+// The distance value at or above which particle j has faded out (lod.h's fades): its tree's for
+// leaves and bark, its own for surface strokes; infinity if it never does.
+float gone_at(const ParticleSource& shot, size_t item, SpriteKind kind, size_t j) {
     const std::vector<BuiltTree>& trees = shot.trees;
     float at = std::numeric_limits<float>::infinity();
     if (kind == SpriteKind::kLeaf) {
@@ -94,7 +86,20 @@ void bound_stroke(const ParticleSource& shot, size_t item, SpriteKind kind, size
         const SurfaceParticles& S = shot.land.chunks[item - trees.size()];
         if (!(S.fade_begin(j) > 1.0f)) at = std::max(S.fade_begin(j), S.fade_end(j));
     }
-    gone = std::max(gone, std::isnan(at) ? std::numeric_limits<float>::infinity() : at);
+    return std::isnan(at) ? std::numeric_limits<float>::infinity() : at;
+}
+
+// Particle j's stroke size bounds into its cluster.
+void bound_stroke(const ParticleSource& shot, size_t item, SpriteKind kind, size_t j,
+                  ParticleCluster& c) {
+    MaterialId mat;
+    const ParticleInput in = particle_input(shot, item, kind, j, RayOrigin{}, mat);
+    const StrokeShaderParams& p = *shot.materials[mat].shader;
+    const float edge = kind == SpriteKind::kLeaf ? crown_edge_size(p, in.center_distance) : 1.0f;
+    const float jitter = stroke_size_jitter(p, in.label);
+    c.stroke = std::max(c.stroke, static_cast<float>((in.width + in.length) * jitter * edge));
+    const double aspect = in.width > 0 ? in.length / in.width : 0.0;
+    c.min_px_factor = std::max(c.min_px_factor, static_cast<float>((1.0 + aspect) * edge));
 }
 
 // The clusters of one kind of item `item`, whose particles' places are pos(j) (tree-local for
@@ -104,18 +109,13 @@ void cluster_kind(const ParticleSource& shot, size_t item, SpriteKind kind, size
                   ItemClusters& out) {
     if (n == 0) return;
     std::vector<uint32_t> order = by_place(n, pos);
+    std::vector<float> gone(n);
+    for (size_t j = 0; j < n; ++j) gone[j] = gone_at(shot, item, kind, j);
     // A tree's leaves and bark strokes fade by one distance value, the tree's, each at its own
     // threshold: runs of like thresholds fade out whole, and a tree is mostly in view or not.
-    if (kind != SpriteKind::kSurface) {
-        std::vector<float> gone(n);
-        for (size_t j = 0; j < n; ++j) {
-            ParticleCluster one;
-            gone[j] = -std::numeric_limits<float>::infinity();
-            bound_stroke(shot, item, kind, j, one, gone[j]);
-        }
+    if (kind != SpriteKind::kSurface)
         std::stable_sort(order.begin(), order.end(),
                          [&](uint32_t a, uint32_t b) { return gone[a] < gone[b]; });
-    }
     const std::vector<BuiltTree>& trees = shot.trees;
     const bool tree = item < trees.size();
     const TreePlacement* pl = tree ? &shot.placements[item] : nullptr;
@@ -134,7 +134,7 @@ void cluster_kind(const ParticleSource& shot, size_t item, SpriteKind kind, size
         c.first = static_cast<uint32_t>(out.order.size());
         c.count = static_cast<uint32_t>(std::min<size_t>(kClusterSize, n - first));
         Box box, spread;
-        float gone = -std::numeric_limits<float>::infinity();
+        c.gone_at = -std::numeric_limits<float>::infinity();
         for (uint32_t k = 0; k < c.count; ++k) {
             const uint32_t j = order[first + k];
             out.order.push_back(j);
@@ -145,12 +145,12 @@ void cluster_kind(const ParticleSource& shot, size_t item, SpriteKind kind, size
                 const float r = glm::length(v);
                 if (r > 0 && std::isfinite(r)) spread.add(glm::dvec3(center + v * (reach / r)));
             }
-            bound_stroke(shot, item, kind, j, c, gone);
+            bound_stroke(shot, item, kind, j, c);
+            c.gone_at = std::max(c.gone_at, gone[j]);
         }
         if (tree) box = placed(*pl, box), spread = placed(*pl, spread);
         box.pad(), spread.pad();
         c.lo = box.lo, c.hi = box.hi, c.spread_lo = spread.lo, c.spread_hi = spread.hi;
-        c.gone_at = gone;
         out.clusters.push_back(c);
     }
 }

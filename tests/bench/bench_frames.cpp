@@ -35,13 +35,27 @@ const Shot& walk(int width) {
 
 constexpr int kFrame = 24;
 
+// The walk at a width with strokes thinned below thin_px: its settings, frame 24's view and
+// the frame before's.
+struct Walk {
+    const Shot& shot;
+    FrameSettings fs;
+    FrameView view, before;
+    Walk(int width, int thin_px)
+        : shot(walk(width)),
+          fs(scene_frame_settings(shot.scene)),
+          view(view_at(shot.scene, frame_time(kFrame, shot.scene.fps))),
+          before(view_at(shot.scene, frame_time(kFrame - 1, shot.scene.fps))) {
+        fs.render.thin_below_px = static_cast<float>(thin_px);
+    }
+};
+
 // args: image width, group culling, memo (the frame before painted first), thin_below_px.
 void BM_Sprites(benchmark::State& state) {
-    const Shot& shot = walk(static_cast<int>(state.range(0)));
-    FrameSettings fs = scene_frame_settings(shot.scene);
-    fs.render.thin_below_px = static_cast<float>(state.range(3));
-    const FrameView view = view_at(shot.scene, frame_time(kFrame, shot.scene.fps));
-    const FrameView before = view_at(shot.scene, frame_time(kFrame - 1, shot.scene.fps));
+    const Walk w(static_cast<int>(state.range(0)), static_cast<int>(state.range(3)));
+    const Shot& shot = w.shot;
+    const FrameSettings& fs = w.fs;
+    const FrameView &view = w.view, &before = w.before;
     const FramePlan plan = plan_frame(shot, fs);
     const FrameLod lod = level_of_detail(shot, view, fs.render);
     const FrameLod lod_before = level_of_detail(shot, before, fs.render);
@@ -82,18 +96,14 @@ BENCHMARK(BM_Sprites)
 
 // A whole frame (the frame before painted first, as animate does), at a width and thinning.
 void BM_Frame(benchmark::State& state) {
-    const Shot& shot = walk(static_cast<int>(state.range(0)));
-    FrameSettings fs = scene_frame_settings(shot.scene);
-    fs.render.thin_below_px = static_cast<float>(state.range(1));
-    const FrameView view = view_at(shot.scene, frame_time(kFrame, shot.scene.fps));
-    const FrameView before = view_at(shot.scene, frame_time(kFrame - 1, shot.scene.fps));
+    Walk w(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
     for (auto _ : state) {
         SeenMemo memo;
-        fs.seen_memo = &memo;
+        w.fs.seen_memo = &memo;
         state.PauseTiming();
-        paint_frame(shot, before, fs);
+        paint_frame(w.shot, w.before, w.fs);
         state.ResumeTiming();
-        const Frame f = paint_frame(shot, view, fs);
+        const Frame f = paint_frame(w.shot, w.view, w.fs);
         benchmark::DoNotOptimize(f.rgba.data());
     }
 }
