@@ -58,9 +58,10 @@ struct ShadowContext {
     // the order Embree reports the cards in, so neither do the bytes of the image.
     uint64_t depth = 0;
     bool blocked = false;
-    // Embree may report a primitive more than once (spatial splits): count each card once.
+    // Embree may report a primitive more than once (spatial splits): count each card once,
+    // keyed by its instance (or geometry) and primitive.
     static constexpr int kSeen = 32;
-    uint32_t seen[kSeen];
+    uint64_t seen[kSeen];
     int n_seen = 0;
     int overflow = 0;
 };
@@ -86,45 +87,129 @@ float caster_opacity(const CasterSet& set, uint32_t prim, const glm::vec3& org,
     return stroke_opacity(p, stroke_noise(c.noise, s, tt, 1), e);
 }
 
+// Opacity of a member's card j where a ray (in the member's space, running towards the sun)
+// crosses it: the card leaf_casters places in the world, built here from the ray's direction.
+float member_opacity(const MemberCasters& m, uint32_t j, const glm::vec3& org,
+                     const glm::vec3& dir) {
+    const float len = glm::length(dir);
+    if (!(len > 0.0f)) return 0.0f;
+    const glm::vec3 sun = dir / len;
+    const StrokeShaderParams& p = *m.shader;
+    glm::vec3 a0, b0;
+    sun_card_frame(sun, a0, b0);
+    const float label = m.label[j];
+    const double ang = stroke_angle_jitter(p, label);
+    const float ca = static_cast<float>(pmath::cos(ang)), sa = static_cast<float>(pmath::sin(ang));
+    const glm::vec3 axis_s = ca * a0 + sa * b0, axis_t = -sa * a0 + ca * b0;
+    const float half_w = 0.5f * m.stroke_width * stroke_size_jitter(p, label);
+    const float half_l = half_w * p.stroke_aspect;
+    const glm::vec3& center = m.position[j];
+    const glm::vec3 rel = org + sun * glm::dot(center - org, sun) - center;
+    const float s = 0.5f + 0.5f * glm::dot(rel, axis_s) / half_w;
+    const float tt = 0.5f + 0.5f * glm::dot(rel, axis_t) / half_l;
+    if (!(s > 0.0f && s < 1.0f && tt > 0.0f && tt < 1.0f)) return 0.0f;
+    const float e = edge_mask(*m.edge, s, tt, p.stroke_fullness);
+    if (e <= p.stroke_feather_min) return 0.0f;
+    const StrokeNoise noise =
+        noise_of(stroke_constants(p, glm::dot(m.normal[j], sun), m.center_distance[j],
+                                  m.branch_distance[j], label, 0, 1.0f, 0.0f, 0.0f, false, false));
+    return stroke_opacity(p, stroke_noise(noise, s, tt, 1), e);
+}
+
+// Whether the ray has met card `key` before (then it is not counted again).
+bool seen_before(ShadowContext* sc, uint64_t key) {
+    for (int k = 0; k < sc->n_seen; ++k)
+        if (sc->seen[k] == key) return true;
+    if (sc->n_seen < ShadowContext::kSeen)
+        sc->seen[sc->n_seen++] = key;
+    else
+        ++sc->overflow;
+    return false;
+}
+
+// Adds a card of opacity a to the ray's optical depth; true when the ray is now blocked
+// (the hit is accepted and the query ends), false to keep walking through the cards.
+bool absorb(ShadowContext* sc, float a) {
+    if (sc->mode == ShadowMode::kThreshold) {
+        if (a > 0.5f) sc->blocked = true;
+        return sc->blocked;
+    }
+    if (a > 0.0f) {
+        sc->depth +=
+            static_cast<uint64_t>(std::lround(-pmath::log2(std::max(1.0f - a, 1e-6f)) * 65536.0f));
+        if (sc->depth >= kOpaqueDepth) sc->blocked = true;
+    }
+    return sc->blocked;
+}
+
+glm::vec3 ray_org(const RTCFilterFunctionNArguments* args, unsigned i) {
+    return {RTCRayN_org_x(args->ray, args->N, i), RTCRayN_org_y(args->ray, args->N, i),
+            RTCRayN_org_z(args->ray, args->N, i)};
+}
+glm::vec3 ray_dir(const RTCFilterFunctionNArguments* args, unsigned i) {
+    return {RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
+            RTCRayN_dir_z(args->ray, args->N, i)};
+}
+
 void caster_filter(const RTCFilterFunctionNArguments* args) {
     auto* sc = reinterpret_cast<ShadowContext*>(const_cast<RTCIntersectContext*>(args->context));
     const auto* set = static_cast<const CasterSet*>(args->geometryUserPtr);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
         const uint32_t prim = RTCHitN_primID(args->hit, args->N, i);
-        bool seen = false;
-        for (int k = 0; k < sc->n_seen; ++k) seen |= sc->seen[k] == prim;
-        if (seen) {
-            args->valid[i] = 0;
-            continue;
-        }
-        if (sc->n_seen < ShadowContext::kSeen)
-            sc->seen[sc->n_seen++] = prim;
-        else
-            ++sc->overflow;
+        const uint64_t geom = 0x80000000u | RTCHitN_geomID(args->hit, args->N, i);
+        if (seen_before(sc, geom << 32 | prim) ||
+            !absorb(sc, caster_opacity(*set, prim, ray_org(args, i), ray_dir(args, i))))
+            args->valid[i] = 0;  // reject: keep walking through the cards
+    }
+}
+
+// A member's cards are Embree user primitives (a disc's built-in test skips hits within two
+// radii of the ray's origin, which is where a leaf's neighbours shade it): bounded by the
+// card's half diagonal about its centre, crossed where the ray passes its centre.
+struct MemberPrimitives {
+    MemberCasters casters;
+    std::vector<float> radius;  // the card's half diagonal, a hair wider
+};
+
+void member_bounds(const RTCBoundsFunctionArguments* args) {
+    const auto* m = static_cast<const MemberPrimitives*>(args->geometryUserPtr);
+    const glm::vec3& c = m->casters.position[args->primID];
+    const float r = m->radius[args->primID];
+    RTCBounds* b = args->bounds_o;
+    b->lower_x = c.x - r, b->lower_y = c.y - r, b->lower_z = c.z - r;
+    b->upper_x = c.x + r, b->upper_y = c.y + r, b->upper_z = c.z + r;
+}
+
+// Shadow rays only: Embree hands the ray in the instanced scene's space and the instance in
+// the context. A card that blocks the ray ends it (tfar = -inf, Embree's "occluded").
+void member_occluded(const RTCOccludedFunctionNArguments* args) {
+    auto* sc = reinterpret_cast<ShadowContext*>(args->context);
+    const auto* m = static_cast<const MemberPrimitives*>(args->geometryUserPtr);
+    const uint32_t prim = args->primID;
+    const uint64_t inst = args->context->instID[0];
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
         const glm::vec3 org(RTCRayN_org_x(args->ray, args->N, i),
                             RTCRayN_org_y(args->ray, args->N, i),
                             RTCRayN_org_z(args->ray, args->N, i));
         const glm::vec3 dir(RTCRayN_dir_x(args->ray, args->N, i),
                             RTCRayN_dir_y(args->ray, args->N, i),
                             RTCRayN_dir_z(args->ray, args->N, i));
-        const float a = caster_opacity(*set, prim, org, dir);
-        if (sc->mode == ShadowMode::kThreshold) {
-            if (a > 0.5f) {
-                sc->blocked = true;
-                continue;  // accept: the ray is blocked
-            }
-        } else if (a > 0.0f) {
-            sc->depth += static_cast<uint64_t>(
-                std::lround(-pmath::log2(std::max(1.0f - a, 1e-6f)) * 65536.0f));
-            if (sc->depth >= kOpaqueDepth) {
-                sc->blocked = true;
-                continue;  // accept: nothing meaningful gets through
-            }
-        }
-        args->valid[i] = 0;  // reject: keep walking through the cards
+        const float dd = glm::dot(dir, dir);
+        if (!(dd > 0.0f)) continue;
+        const float t = glm::dot(m->casters.position[prim] - org, dir) / dd;
+        if (!(t >= RTCRayN_tnear(args->ray, args->N, i) &&
+              t <= RTCRayN_tfar(args->ray, args->N, i)))
+            continue;
+        if (seen_before(sc, inst << 32 | prim)) continue;
+        if (absorb(sc, member_opacity(m->casters, prim, org, dir)))
+            RTCRayN_tfar(args->ray, args->N, i) = -std::numeric_limits<float>::infinity();
     }
 }
+
+// Never asked (the casters' scene answers shadow rays only), but Embree wants one.
+void member_intersect(const RTCIntersectFunctionNArguments*) {}
 
 void fill_ray(RTCRay& r, const glm::dvec3& world, const glm::dvec3& anchor, const glm::vec3& d,
               float tmax, const glm::vec3* n) {
@@ -182,8 +267,12 @@ void set_ray_device_config(const std::string& config) { device_config() = config
 struct RayMeshes::Impl {
     RTCDevice device = nullptr;
     std::vector<RTCScene> scenes;  // one per mesh
+    // One per member's caster set, and what its filter reads.
+    std::vector<RTCScene> caster_scenes;
+    std::vector<std::unique_ptr<MemberPrimitives>> casters;
     ~Impl() {
         for (RTCScene s : scenes) rtcReleaseScene(s);
+        for (RTCScene s : caster_scenes) rtcReleaseScene(s);
         if (device) rtcReleaseDevice(device);
     }
 };
@@ -203,14 +292,50 @@ uint32_t RayMeshes::add(const QuadMesh& mesh) {
     return static_cast<uint32_t>(impl_->scenes.size() - 1);
 }
 
+uint32_t RayMeshes::add_casters(const MemberCasters& m) {
+    RTCScene scene = rtcNewScene(impl_->device);
+    // Medium quality builds without spatial splits: fewer repeated filter calls.
+    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_MEDIUM);
+    auto data = std::make_unique<MemberPrimitives>();
+    data->casters = m;
+    if (m.count > 0) {
+        RTCGeometry g = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_USER);
+        if (!g)
+            throw std::runtime_error("Embree: cannot create a user geometry (error " +
+                                     std::to_string(rtcGetDeviceError(impl_->device)) + ")");
+        const StrokeShaderParams& p = *m.shader;
+        const float diagonal = std::sqrt(1.0f + p.stroke_aspect * p.stroke_aspect);
+        data->radius.resize(m.count);
+        // A hair wider than the card, so float rounding at its corners loses nothing.
+        for (size_t j = 0; j < m.count; ++j)
+            data->radius[j] =
+                1.001f * 0.5f * m.stroke_width * stroke_size_jitter(p, m.label[j]) * diagonal;
+        rtcSetGeometryUserPrimitiveCount(g, static_cast<unsigned>(m.count));
+        rtcSetGeometryUserData(g, data.get());
+        rtcSetGeometryBoundsFunction(g, member_bounds, nullptr);
+        rtcSetGeometryIntersectFunction(g, member_intersect);
+        rtcSetGeometryOccludedFunction(g, member_occluded);
+        rtcCommitGeometry(g);
+        rtcAttachGeometry(scene, g);
+        rtcReleaseGeometry(g);
+    }
+    impl_->caster_scenes.push_back(scene);
+    impl_->casters.push_back(std::move(data));
+    return static_cast<uint32_t>(impl_->caster_scenes.size() - 1);
+}
+
 void RayMeshes::commit() {
-    tbb::parallel_for(size_t{0}, impl_->scenes.size(), [&](size_t i) {
+    const size_t meshes = impl_->scenes.size();
+    tbb::parallel_for(size_t{0}, meshes + impl_->caster_scenes.size(), [&](size_t i) {
         FlushDenormals ftz;
-        rtcCommitScene(impl_->scenes[i]);
+        rtcCommitScene(i < meshes ? impl_->scenes[i] : impl_->caster_scenes[i - meshes]);
     });
 }
 
 uint32_t RayMeshes::size() const { return static_cast<uint32_t>(impl_->scenes.size()); }
+uint32_t RayMeshes::caster_sets() const {
+    return static_cast<uint32_t>(impl_->caster_scenes.size());
+}
 
 struct RayScene::Impl {
     glm::dvec3 anchor;
@@ -222,7 +347,8 @@ struct RayScene::Impl {
     RTCScene scene = nullptr;    // opaque surfaces
     RTCScene casters = nullptr;  // stroke cards, created on first use
     uint32_t meshes = 0;
-    uint32_t caster_total = 0;
+    uint32_t caster_total = 0;   // cards, counting each instance's
+    uint32_t caster_stored = 0;  // cards held here
     std::vector<std::unique_ptr<CasterSet>> sets;
 };
 
@@ -273,20 +399,32 @@ uint32_t RayScene::add_mesh(const QuadMesh& mesh, const glm::dvec3& offset) {
     return attach(g, glm::mat3(1.0f));
 }
 
-uint32_t RayScene::add_instance(uint32_t mesh, const glm::dmat3& linear, const glm::dvec3& offset) {
-    if (!impl_->shared || mesh >= impl_->shared->scenes.size())
-        throw std::invalid_argument("RayScene::add_instance: no shared mesh " +
-                                    std::to_string(mesh));
-    RTCGeometry g = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_INSTANCE);
-    rtcSetGeometryInstancedScene(g, impl_->shared->scenes[mesh]);
+namespace {
+
+// An instance of `scene` at world = offset + linear * p, relative to the anchor.
+RTCGeometry new_instance(RTCDevice device, RTCScene scene, const glm::dmat3& linear,
+                         const glm::dvec3& offset, const glm::dvec3& anchor) {
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(g, scene);
     // Column-major 3x4: the linear part's columns, then the translation from the anchor.
-    const glm::dvec3 t = offset - impl_->anchor;
+    const glm::dvec3 t = offset - anchor;
     float xfm[12];
     for (int c = 0; c < 3; ++c)
         for (int r = 0; r < 3; ++r) xfm[3 * c + r] = static_cast<float>(linear[c][r]);
     xfm[9] = static_cast<float>(t.x), xfm[10] = static_cast<float>(t.y);
     xfm[11] = static_cast<float>(t.z);
     rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+    return g;
+}
+
+}  // namespace
+
+uint32_t RayScene::add_instance(uint32_t mesh, const glm::dmat3& linear, const glm::dvec3& offset) {
+    if (!impl_->shared || mesh >= impl_->shared->scenes.size())
+        throw std::invalid_argument("RayScene::add_instance: no shared mesh " +
+                                    std::to_string(mesh));
+    RTCGeometry g =
+        new_instance(impl_->device, impl_->shared->scenes[mesh], linear, offset, impl_->anchor);
     // Normals only need a direction: the matrix is scaled to unit size before it is inverted,
     // so tiny and huge placements alike give finite, well-conditioned normals.
     double big = 0;
@@ -296,13 +434,36 @@ uint32_t RayScene::add_instance(uint32_t mesh, const glm::dmat3& linear, const g
         g, big > 0 ? glm::mat3(glm::transpose(glm::inverse(linear / big))) : glm::mat3(1.0f));
 }
 
+namespace {
+
+RTCScene caster_scene(RTCDevice device, RTCScene& casters) {
+    if (!casters) {
+        casters = rtcNewScene(device);
+        // Medium quality builds without spatial splits: fewer repeated filter calls.
+        rtcSetSceneBuildQuality(casters, RTC_BUILD_QUALITY_MEDIUM);
+    }
+    return casters;
+}
+
+}  // namespace
+
+uint32_t RayScene::add_caster_instance(uint32_t set, const glm::dmat3& linear,
+                                       const glm::dvec3& offset) {
+    if (!impl_->shared || set >= impl_->shared->caster_scenes.size())
+        throw std::invalid_argument("RayScene::add_caster_instance: no shared caster set " +
+                                    std::to_string(set));
+    RTCGeometry g = new_instance(impl_->device, impl_->shared->caster_scenes[set], linear, offset,
+                                 impl_->anchor);
+    rtcCommitGeometry(g);
+    uint32_t id = rtcAttachGeometry(caster_scene(impl_->device, impl_->casters), g);
+    rtcReleaseGeometry(g);
+    impl_->caster_total += static_cast<uint32_t>(impl_->shared->casters[set]->casters.count);
+    return id;
+}
+
 uint32_t RayScene::add_casters(const std::vector<StrokeCaster>& casters,
                                const StrokeShaderParams& shader, const EdgeTable& edge) {
-    if (!impl_->casters) {
-        impl_->casters = rtcNewScene(impl_->device);
-        // Medium quality builds without spatial splits: fewer repeated filter calls.
-        rtcSetSceneBuildQuality(impl_->casters, RTC_BUILD_QUALITY_MEDIUM);
-    }
+    caster_scene(impl_->device, impl_->casters);
     auto set = std::make_unique<CasterSet>();
     set->shader = &shader;
     set->edge = &edge;
@@ -335,6 +496,7 @@ uint32_t RayScene::add_casters(const std::vector<StrokeCaster>& casters,
     uint32_t id = rtcAttachGeometry(impl_->casters, g);
     rtcReleaseGeometry(g);
     impl_->caster_total += static_cast<uint32_t>(n);
+    impl_->caster_stored += static_cast<uint32_t>(n);
     impl_->sets.push_back(std::move(set));
     return id;
 }
@@ -347,6 +509,7 @@ void RayScene::commit() {
 
 uint32_t RayScene::mesh_count() const { return impl_->meshes; }
 uint32_t RayScene::caster_count() const { return impl_->caster_total; }
+uint32_t RayScene::caster_cards_stored() const { return impl_->caster_stored; }
 
 RayHit RayScene::intersect(const glm::dvec3& origin, const glm::vec3& dir, float tmax,
                            const glm::vec3* n) const {

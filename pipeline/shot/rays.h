@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 #include <limits>
@@ -68,6 +69,34 @@ struct StrokeCaster {
     StrokeNoise noise;                   // noise frequencies and offsets of the stroke
 };
 
+// The frame a caster card facing the sun (unit) is turned in: a0 across, b0 along, both
+// perpendicular to it. a0 lies in the horizontal plane, so a tree turned about the vertical
+// sees its cards turned with it (what lets members' cards serve every tree); only a sun
+// straight overhead takes the x axis instead.
+inline void sun_card_frame(const glm::vec3& sun, glm::vec3& a0, glm::vec3& b0) {
+    const bool overhead = sun.x * sun.x + sun.z * sun.z < 1e-12f;
+    const glm::vec3 ref = overhead ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+    a0 = glm::normalize(glm::cross(ref, sun));
+    b0 = glm::cross(sun, a0);
+}
+
+// A grown tree's leaf strokes as shadow casters in its own space (IV.4.2), for the sun's scenes
+// to place by instances: each card faces the sun as the ray crossing it sees it (in the tree's
+// space, so a turned tree's cards face the sun too) and is turned by its stroke's angle
+// jitter, so one set serves every tree drawn from the member and any sun direction. The arrays
+// are the member's leaf particles and must outlive the scenes, as must the shader and edge.
+struct MemberCasters {
+    size_t count = 0;
+    const glm::vec3* position = nullptr;  // card centres
+    const glm::vec3* normal = nullptr;    // unit: the stroke's lightness against the sun
+    const float* label = nullptr;
+    const float* center_distance = nullptr;
+    const float* branch_distance = nullptr;
+    float stroke_width = 0;  // before the size jitter, in the member's units
+    const StrokeShaderParams* shader = nullptr;
+    const EdgeTable* edge = nullptr;
+};
+
 // Meshes several RayScenes share (each tree's limbs, in the camera's scene and the sun's),
 // each kept in its own space and built once; scenes place them as instances. A scene holds
 // its own reference to the device and the meshes, so either may be destroyed first.
@@ -80,9 +109,14 @@ class RayMeshes {
 
     // Copies the mesh into Embree, in its own coordinates; returns its index.
     uint32_t add(const QuadMesh& mesh);
-    // Builds every mesh's acceleration structure, in parallel; call once after the last add.
+    // A member's leaf casters (cards in its own space), built into their own scene; returns
+    // its index for RayScene::add_caster_instance.
+    uint32_t add_casters(const MemberCasters& casters);
+    // Builds every mesh's and caster set's acceleration structure, in parallel; call once
+    // after the last add.
     void commit();
     uint32_t size() const;
+    uint32_t caster_sets() const;
 
     struct Impl;
 
@@ -109,10 +143,16 @@ class RayScene {
     // (which must outlive the scene). Returns the geometry id; primitive i is casters[i].
     uint32_t add_casters(const std::vector<StrokeCaster>& casters, const StrokeShaderParams& shader,
                          const EdgeTable& edge);
+    // Places shared caster set `set` (committed) at world = offset + linear * p, for a linear
+    // part that is a turn about the vertical times a uniform scale (a tree's placement): the
+    // cards face the sun in the set's space, which is the world's turned about the vertical.
+    // Returns the instance's id among the caster geometries.
+    uint32_t add_caster_instance(uint32_t set, const glm::dmat3& linear, const glm::dvec3& offset);
     // Builds the acceleration structure; call once after the last add.
     void commit();
-    uint32_t mesh_count() const;  // meshes and instances
-    uint32_t caster_count() const;
+    uint32_t mesh_count() const;           // meshes and instances
+    uint32_t caster_count() const;         // cards, counting each instance's
+    uint32_t caster_cards_stored() const;  // cards this scene holds itself (not instanced)
 
     // Nearest hit along a unit direction, within tmax. `surface_normal`, if the origin lies
     // on a surface, is the direction it is lifted along (flipped to the ray's side). Stroke

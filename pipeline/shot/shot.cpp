@@ -84,8 +84,8 @@ void leaf_casters(const SceneDesc& scene, const BuiltTree& b, const glm::vec3& s
     const LeafParticles& L = b.tree().leaves;
     const double w = tree_stroke_width(scene.families[b.family], p, b.scale);
     // A frame perpendicular to the sun; each card turned by its stroke's angle jitter.
-    const glm::vec3 ref = std::abs(sun.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-    const glm::vec3 a0 = glm::normalize(glm::cross(ref, sun)), b0 = glm::cross(sun, a0);
+    glm::vec3 a0, b0;
+    sun_card_frame(sun, a0, b0);
     for (size_t j = 0; j < L.size(); ++j) {
         StrokeCaster& c = out[j];
         c.center = pl.place(L.position[j]);
@@ -103,12 +103,28 @@ void leaf_casters(const SceneDesc& scene, const BuiltTree& b, const glm::vec3& s
     }
 }
 
+MemberCasters member_casters(const Shot& shot, const BuiltTree& b) {
+    const Family& family = shot.scene.families[b.family];
+    const LeafParticles& L = b.tree().leaves;
+    MemberCasters m;
+    m.count = L.size();
+    m.position = L.position.data();
+    m.normal = L.normal.data();
+    m.label = L.label.data();
+    m.center_distance = L.center_distance.data();
+    m.branch_distance = L.branch_distance.data();
+    m.stroke_width = static_cast<float>(tree_stroke_width(family, family.leaf_shader, 1.0));
+    m.shader = &family.leaf_shader;
+    m.edge = &shot.materials[shot.materials.leaf(b.family)].edge;
+    return m;
+}
+
 std::vector<std::vector<StrokeCaster>> imported_casters(const Shot& shot, const glm::vec3& sun) {
     const SceneDesc& scene = shot.scene;
     const BuiltLandscape& land = *shot.land;
     std::vector<std::vector<StrokeCaster>> out(scene.materials.size());
-    const glm::vec3 ref = std::abs(sun.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-    const glm::vec3 a0 = glm::normalize(glm::cross(ref, sun)), b0 = glm::cross(sun, a0);
+    glm::vec3 a0, b0;
+    sun_card_frame(sun, a0, b0);
     const ParticleSource particles = shot.particles();
     const size_t trees = shot.trees->size();
     for (size_t c = 0; c < land.chunks.size(); ++c) {
@@ -160,22 +176,12 @@ std::unique_ptr<RayScene> build_sun_scene(const Shot& shot, const glm::vec3& sun
     for (size_t i = 0; i < trees.size(); ++i)
         rays->add_instance(shot.limb_mesh[i], shot.placements[i].linear(),
                            shot.placements[i].position);
-    // Leaf strokes as cards facing the sun, one caster set per family's leaf shader, each in
-    // tree order whatever the threads did.
-    const size_t nf = scene.families.size();
-    std::vector<std::vector<StrokeCaster>> casters(nf);
-    std::vector<size_t> offset(trees.size());
-    for (size_t i = 0; i < trees.size(); ++i) {
-        offset[i] = casters[trees[i].family].size();
-        casters[trees[i].family].resize(offset[i] + trees[i].tree().leaves.size());
-    }
-    tbb::parallel_for(size_t{0}, trees.size(), [&](size_t i) {
-        leaf_casters(scene, trees[i], sun, casters[trees[i].family].data() + offset[i]);
-    });
-    for (uint32_t f = 0; f < nf; ++f)
-        if (!casters[f].empty())
-            rays->add_casters(casters[f], scene.families[f].leaf_shader,
-                              shot.materials[shot.materials.leaf(f)].edge);
+    // Leaf strokes as cards facing the sun: each tree's member's cards, placed like its limbs
+    // (so trees shade each other in the one scene), the cards turned to the sun by the filter.
+    for (size_t i = 0; i < trees.size(); ++i)
+        if (!trees[i].tree().leaves.position.empty())
+            rays->add_caster_instance(shot.limb_mesh[i], shot.placements[i].linear(),
+                                      shot.placements[i].position);
     // Particles from other tools cast like leaf strokes, one caster set per material.
     std::vector<std::vector<StrokeCaster>> by_material = imported_casters(shot, sun);
     for (uint32_t m = 0; m < by_material.size(); ++m)
@@ -305,11 +311,15 @@ Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> t
     if (plan.underpaint || plan.shadows) {
         PassTimer timer;
         shot.limbs = std::make_unique<RayMeshes>();
-        // One mesh per grown tree: the trees drawn from one member share it.
+        // One mesh per grown tree (and, when the sun casts shadows, one set of leaf casters
+        // in its space): the trees drawn from one member share them.
         std::map<const Tree*, uint32_t> mesh;
         for (const BuiltTree& b : *shot.trees) {
             auto [it, fresh] = mesh.emplace(&b.tree(), 0u);
-            if (fresh) it->second = shot.limbs->add(b.tree().render);
+            if (fresh) {
+                it->second = shot.limbs->add(b.tree().render);
+                if (plan.shadows) shot.limbs->add_casters(member_casters(shot, b));
+            }
             shot.limb_mesh.push_back(it->second);
         }
         shot.limbs->commit();
@@ -333,7 +343,9 @@ Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> t
                       : std::string("no camera scene")) +
                  (shot.sun_rays ? ", " + std::to_string(shot.sun_rays->mesh_count()) +
                                       " meshes + " + std::to_string(shot.sun_rays->caster_count()) +
-                                      " stroke casters for the sun"
+                                      " stroke casters for the sun (" +
+                                      std::to_string(shot.limbs->caster_sets()) +
+                                      " trees' leaf cards built once, placed per tree)"
                   : plan.sun_moves ? ", the sun's scene per frame (the sun moves)"
                                    : std::string(", no shadow scene"))});
     }

@@ -22,7 +22,8 @@
 namespace pleinair {
 
 // The tree's leaf strokes as shadow casters: cards facing the sun, sized and turned like the
-// strokes, with the same noise (IV.4.2).
+// strokes, with the same noise (IV.4.2), placed in the world. The shot's sun scenes place its
+// member's cards by instances instead (member_casters); these are what those are tested against.
 std::vector<StrokeCaster> leaf_casters(const SceneDesc& scene, const BuiltTree& tree,
                                        const glm::vec3& sun);
 // The same, written to out[0 .. tree.tree().leaves.size() - 1].
@@ -30,6 +31,10 @@ void leaf_casters(const SceneDesc& scene, const BuiltTree& tree, const glm::vec3
                   StrokeCaster* out);
 
 struct Shot;
+
+// A tree's member's leaf strokes as casters in its own space (rays.h), for the sun's scenes to
+// place by instances: built once per grown tree, whatever the sun.
+MemberCasters member_casters(const Shot& shot, const BuiltTree& tree);
 
 // The particle files' strokes that cast shadows (ParticleFileDesc::casts_shadows), as cards
 // facing the sun like leaf strokes', per scene material.
