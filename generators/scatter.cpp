@@ -16,6 +16,13 @@ double scatter_grid_cells(const ScatterParams& p) {
     return cells * cells;
 }
 
+double clearing_distance(const Clearing& c, const glm::dvec2& p) {
+    const glm::dvec2 d = c.to - c.from;
+    const double len2 = glm::dot(d, d);
+    const double u = len2 > 0 ? std::clamp(glm::dot(p - c.from, d) / len2, 0.0, 1.0) : 0.0;
+    return glm::length(p - (c.from + u * d));
+}
+
 std::vector<ScatteredTree> scatter_trees(const TerrainParams& terrain, uint64_t terrain_seed,
                                          const ScatterParams& p, uint64_t seed,
                                          uint64_t group_key) {
@@ -73,6 +80,8 @@ std::vector<ScatteredTree> scatter_trees(const TerrainParams& terrain, uint64_t 
         uint64_t tree_seed = next_u32(rng) | (uint64_t{next_u32(rng)} << 32);
         if (up < cos_max || y < p.water_level || static_cast<int>(out.size()) >= p.max_trees)
             return;
+        for (const Clearing& c : p.clearings)
+            if (clearing_distance(c, glm::dvec2(x, z)) < c.radius) return;
         uint32_t family = 0;
         for (double acc = p.weights[0]; pick >= acc && family + 1 < p.weights.size();)
             acc += p.weights[++family];

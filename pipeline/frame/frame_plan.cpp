@@ -60,7 +60,8 @@ FramePlan plan_frame(const Shot& shot, const FrameSettings& settings) {
         !scene.sun_casts_shadows ? "the sun casts no shadows: no shadow scene, no shadow ray"
         : !plan.shadows          ? "nothing in the scene to cast a shadow"
         : plan.sun_light == SunLightSource::kShot
-            ? "the still sun's light at each particle, traced once by the shot"
+            ? "the still sun's light at each particle, kept in the shot once a frame has traced "
+              "it"
         : plan.sun_light == SunLightSource::kFrameScene
             ? std::string("the sun moves: its scene is built for this frame; ") + where
             : std::string("the sun casts shadows through the stroke casters: ") + where);

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <map>
 #define GLM_ENABLE_EXPERIMENTAL
 #include <cstdio>
 #include <glm/gtx/norm.hpp>
@@ -274,6 +276,67 @@ float thin_draw(size_t item, SpriteKind kind, size_t j) {
     return static_cast<float>(z >> 40) * (1.0f / 16777216.0f);
 }
 
+namespace {
+
+// A tree's distance values for leaves and bark, replayed along the track from its first frame,
+// each step bounded so that no fade completes in fewer than kMinFadeFrames frames, however fast
+// the camera goes.
+void replay_tree(const Shot& shot, size_t i, const std::vector<FrameView>& path,
+                 const RenderSettings& rs, TreeLod& t) {
+    const BuiltTree& b = (*shot.trees)[i];
+    const glm::dvec3 center = shot.placements[i].place(b.tree().center);
+    const FadeParams& fp = shot.scene.families[b.family].params.leaves.fade;
+    const double leaf_rate = max_fade_rate(std::max(fp.length_min, fp.length.lo), rs.fade_gain);
+    const double trunk_rate = max_fade_rate(kBarkFadeSpan, rs.fade_gain);
+    for (size_t k = 0; k < path.size(); ++k) {
+        const DistanceCircles& pc = path[k].circles;
+        const double depth = view_depth(path[k].camera, center);
+        const float leaf = circle_value(depth, pc.leaf_near, pc.leaf_far);
+        const float trunk = circle_value(depth, pc.trunk_near, pc.trunk_far);
+        if (k == 0) {
+            t.leaf = leaf, t.trunk = trunk;
+            continue;
+        }
+        t.leaf += static_cast<float>(std::clamp<double>(leaf - t.leaf, -leaf_rate, leaf_rate));
+        t.trunk += static_cast<float>(std::clamp<double>(trunk - t.trunk, -trunk_rate, trunk_rate));
+    }
+}
+
+// The leaves' detail at the tree's distance value t.leaf (> 0): how much the interior
+// darkening weakens, how much survivors grow and where they spread to.
+void leaf_detail(const Shot& shot, const BuiltTree& b, const RenderSettings& rs, float max_growth,
+                 TreeLod& t) {
+    const LeafParticles& L = b.tree().leaves;
+    // Interior darkening stands for shade cast by outer leaves (IV.4.1); as they fade it
+    // weakens (IV.6), by as much as keeps the survivors' mean lightness the whole tree's.
+    // A leaf's lightness is linear in the weakening w: l0 + (l1 - l0) w, at a typical N.L.
+    const StrokeShaderParams& shader = shot.scene.families[b.family].leaf_shader;
+    double sum = 0, full = 0, k0 = 0, k1 = 0;
+    std::vector<float> alpha(L.size());  // each leaf's fade, for the spread below too
+    for (size_t j = 0; j < L.size(); ++j) {
+        alpha[j] = leaf_fade(t.leaf, L.fade_begin[j], L.fade_end[j], rs.fade_gain);
+        const double a = alpha[j];
+        const double l0 =
+            stroke_lightness(shader, 0.5f, L.center_distance[j], L.branch_distance[j], 0.0f);
+        const double l1 =
+            stroke_lightness(shader, 0.5f, L.center_distance[j], L.branch_distance[j], 1.0f);
+        sum += a, full += l0, k0 += a * l0, k1 += a * (l1 - l0);
+    }
+    if (sum > 0 && k1 > 1e-9 * sum)
+        t.darkening_lift = static_cast<float>(
+            std::clamp((full / static_cast<double>(L.size()) - k0 / sum) / (k1 / sum), 0.0, 1.0));
+    // Cook et al. 2007: the survivors' area grows by 1 / u, so the crown's coverage stays
+    // (for leaves overlapping at random), here by u^-0.9 (kGrowthPower), since the spread
+    // below also widens the crown the survivors fill: with 1 / u the far oak of tree-dolly
+    // covered 4.3% more than at full detail, with u^-0.9 0.2% less.
+    t.kept = static_cast<float>(sum / static_cast<double>(L.size()));
+    const float floor = pmath::pow(max_growth, -1.0f / kGrowthPower);
+    t.growth = std::min(max_growth, pmath::pow(std::max(t.kept, floor), -kGrowthPower));
+    radial_spread(L, alpha, b.tree().center, max_growth, t);
+}
+
+}  // namespace
+
 FrameLod level_of_detail(const Shot& shot, const FrameView& view, const RenderSettings& rs) {
     FrameLod lod;
     lod.camera = view.camera;
@@ -292,58 +355,34 @@ FrameLod level_of_detail(const Shot& shot, const FrameView& view, const RenderSe
     const std::vector<FrameView> path = replay_path(shot.scene, view);
     const float max_growth = std::max(1.0f, rs.max_leaf_growth);
     tbb::parallel_for(size_t{0}, trees.size(), [&](size_t i) {
-        const BuiltTree& b = trees[i];
-        TreeLod& t = lod.trees[i];
-        const glm::dvec3 center = shot.placements[i].place(b.tree().center);
-        const FadeParams& fp = shot.scene.families[b.family].params.leaves.fade;
-        const double leaf_rate = max_fade_rate(std::max(fp.length_min, fp.length.lo), rs.fade_gain);
-        const double trunk_rate = max_fade_rate(kBarkFadeSpan, rs.fade_gain);
-        // Replayed along the track from its first frame, each step bounded so that no fade
-        // completes in fewer than kMinFadeFrames frames, however fast the camera goes.
-        for (size_t k = 0; k < path.size(); ++k) {
-            const DistanceCircles& pc = path[k].circles;
-            const double depth = view_depth(path[k].camera, center);
-            const float leaf = circle_value(depth, pc.leaf_near, pc.leaf_far);
-            const float trunk = circle_value(depth, pc.trunk_near, pc.trunk_far);
-            if (k == 0) {
-                t.leaf = leaf, t.trunk = trunk;
-                continue;
-            }
-            t.leaf += static_cast<float>(std::clamp<double>(leaf - t.leaf, -leaf_rate, leaf_rate));
-            t.trunk +=
-                static_cast<float>(std::clamp<double>(trunk - t.trunk, -trunk_rate, trunk_rate));
-        }
-        if (!lod.trunks) t.trunk = 0;
-        if (!lod.leaves) return;
-        const LeafParticles& L = b.tree().leaves;
-        if (L.size() == 0 || t.leaf <= 0) return;
-        // Interior darkening stands for shade cast by outer leaves (IV.4.1); as they fade it
-        // weakens (IV.6), by as much as keeps the survivors' mean lightness the whole tree's.
-        // A leaf's lightness is linear in the weakening w: l0 + (l1 - l0) w, at a typical N.L.
-        const StrokeShaderParams& shader = shot.scene.families[b.family].leaf_shader;
-        double sum = 0, full = 0, k0 = 0, k1 = 0;
-        std::vector<float> alpha(L.size());  // each leaf's fade, for the spread below too
-        for (size_t j = 0; j < L.size(); ++j) {
-            alpha[j] = leaf_fade(t.leaf, L.fade_begin[j], L.fade_end[j], rs.fade_gain);
-            const double a = alpha[j];
-            const double l0 =
-                stroke_lightness(shader, 0.5f, L.center_distance[j], L.branch_distance[j], 0.0f);
-            const double l1 =
-                stroke_lightness(shader, 0.5f, L.center_distance[j], L.branch_distance[j], 1.0f);
-            sum += a, full += l0, k0 += a * l0, k1 += a * (l1 - l0);
-        }
-        if (sum > 0 && k1 > 1e-9 * sum)
-            t.darkening_lift = static_cast<float>(std::clamp(
-                (full / static_cast<double>(L.size()) - k0 / sum) / (k1 / sum), 0.0, 1.0));
-        // Cook et al. 2007: the survivors' area grows by 1 / u, so the crown's coverage stays
-        // (for leaves overlapping at random), here by u^-0.9 (kGrowthPower), since the spread
-        // below also widens the crown the survivors fill: with 1 / u the far oak of tree-dolly
-        // covered 4.3% more than at full detail, with u^-0.9 0.2% less.
-        t.kept = static_cast<float>(sum / static_cast<double>(L.size()));
-        const float floor = pmath::pow(max_growth, -1.0f / kGrowthPower);
-        t.growth = std::min(max_growth, pmath::pow(std::max(t.kept, floor), -kGrowthPower));
-        radial_spread(L, alpha, b.tree().center, max_growth, t);
+        replay_tree(shot, i, path, rs, lod.trees[i]);
+        if (!lod.trunks) lod.trees[i].trunk = 0;
     });
+    if (!lod.leaves) return lod;
+    // A tree's leaf detail is a function of its grown tree (its member) and its distance value
+    // alone: trees drawn from one member at the same value (the far wood, all at 1) share it,
+    // computed once and copied, the same bits as computed tree by tree.
+    std::map<std::pair<const Tree*, uint32_t>, size_t> first;
+    std::vector<size_t> source(trees.size(), trees.size()), computed;
+    for (size_t i = 0; i < trees.size(); ++i) {
+        if (trees[i].tree().leaves.size() == 0 || lod.trees[i].leaf <= 0) continue;
+        uint32_t bits;
+        std::memcpy(&bits, &lod.trees[i].leaf, sizeof bits);
+        auto [it, fresh] = first.emplace(std::make_pair(&trees[i].tree(), bits), i);
+        source[i] = it->second;
+        if (fresh) computed.push_back(i);
+    }
+    tbb::parallel_for(size_t{0}, computed.size(), [&](size_t k) {
+        const size_t i = computed[k];
+        leaf_detail(shot, trees[i], rs, max_growth, lod.trees[i]);
+    });
+    for (size_t i = 0; i < trees.size(); ++i) {
+        if (source[i] == i || source[i] == trees.size()) continue;
+        const TreeLod& from = lod.trees[source[i]];
+        TreeLod& t = lod.trees[i];
+        t.kept = from.kept, t.growth = from.growth, t.darkening_lift = from.darkening_lift;
+        t.center = from.center, t.radial = from.radial, t.max_spread = from.max_spread;
+    }
     return lod;
 }
 

@@ -358,9 +358,11 @@ struct ItemSprites {
         sp.fade *= seen;
         const bool traced = plan.sun_light == SunLightSource::kShotScene ||
                             plan.sun_light == SunLightSource::kFrameScene;
-        if (plan.sun_light == SunLightSource::kShot)
-            in.shadow = shot.sun_light[item][slot];
-        else if (traced && !plan.fragment_shadows)
+        if (plan.sun_light == SunLightSource::kShot) {
+            bool cast = false;
+            in.shadow = shot.sun_light->light(*shot.sun_rays, item, slot, origin, cast);
+            if (cast) ++counters.shadow_rays.local();
+        } else if (traced && !plan.fragment_shadows)
             ++counters.shadow_rays.local(),
                 in.shadow = sun_light_at(*input.sun_rays, origin, c.sun, c.rs.shadows);
         in.shadow += (1.0f - in.shadow) * in.lod.shadow_lift;
@@ -473,10 +475,11 @@ SpriteSet sprites_stage(const FrameContext& ctx, const FrameLod& lod, const RayS
     rep.shadow_rays = sprites.shadow_rays;
     phase.done(
         std::string("every particle faces the camera") +
-            (plan.fragment_shadows                     ? "; 4 x 4 shadow rays per sprite"
-             : plan.sun_light == SunLightSource::kShot ? "; light from the shot"
-             : plan.shadows                            ? "; a shadow ray per particle"
-                                                       : "") +
+            (plan.fragment_shadows ? "; 4 x 4 shadow rays per sprite"
+             : plan.sun_light == SunLightSource::kShot
+                 ? "; light kept in the shot, traced when first shown"
+             : plan.shadows ? "; a shadow ray per particle"
+                            : "") +
             (!plan.underpaint       ? ""
              : seen.cameras.empty() ? "; hidden ones culled"
                                     : "; hidden ones culled, seen from where the eye is over " +

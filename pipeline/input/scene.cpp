@@ -217,6 +217,15 @@ void visit_group(TreeGroup& g, V& v) {
     v.integer("max_trees", p.max_trees, {0, 100000}, "At most this many trees.");
 }
 
+template <class V>
+void visit_clearing(Clearing& c, V& v) {
+    v.require("from");
+    v.vector2("from", c.from, "world units", "(x, z) where the clearing starts.");
+    v.vector2("to", c.to, "world units", "(x, z) where it ends; absent: `from` (a round glade).");
+    v.number("radius", c.radius, {0, 1e7}, "world units",
+             "No trunk stands within this distance of the segment from `from` to `to`.");
+}
+
 const std::pair<TrackInterpolation, const char*> kInterpolations[] = {
     {TrackInterpolation::kCatmullRom, interpolation_name(TrackInterpolation::kCatmullRom)},
     {TrackInterpolation::kLinear, interpolation_name(TrackInterpolation::kLinear)},
@@ -747,6 +756,14 @@ void parse_groups(const json& doc, SceneDesc& s, std::vector<Problem>& problems,
                   g.params.weights.clear();
                   visit_group(g, r);
                   r.claim("families");
+                  r.claim("clearings");
+                  read_list(j, "clearings", ptr + "/clearings", problems, plain,
+                            [&](const json& cj, Reader& cr, const std::string&) {
+                                Clearing c;
+                                visit_clearing(c, cr);
+                                if (!cj.contains("to")) c.to = c.from;
+                                g.params.clearings.push_back(c);
+                            });
                   auto fam = j.find("families");
                   if (fam == j.end() || !fam->is_object() || fam->empty()) {
                       problems.push_back({ptr + "/families",
@@ -1235,6 +1252,11 @@ std::string scene_reference() {
         d.note("families", "",
                "Family names to relative weights, e.g. {\"oak\": 2, \"poplar\": 1}.");
     });
+    d.object("groups/N/clearings/M",
+             "A stretch of the group kept free of trunks (a path through the wood, a glade)", [&] {
+                 Clearing c;
+                 visit_clearing(c, d);
+             });
     return d.out.str();
 }
 

@@ -54,20 +54,6 @@ std::unique_ptr<RayScene> build_view_scene(const Shot& shot, std::vector<ViewSur
     return rays;
 }
 
-// Each particle's light from the still sun, item by item in parallel.
-std::vector<std::vector<float>> trace_sun_light(const Shot& shot) {
-    std::vector<std::vector<float>> light(shot.item_count());
-    const glm::vec3 sun(shot.scene.sun_direction);
-    const ShadowMode mode = shot.scene.render.shadows;
-    tbb::parallel_for(size_t{0}, light.size(), [&](size_t i) {
-        FlushDenormals ftz;
-        for_each_particle(shot, i, [&](SpriteKind, size_t, const RayOrigin& o) {
-            light[i].push_back(sun_light_at(*shot.sun_rays, o, sun, mode));
-        });
-    });
-    return light;
-}
-
 }  // namespace
 
 std::vector<StrokeCaster> leaf_casters(const SceneDesc& scene, const BuiltTree& b,
@@ -363,12 +349,15 @@ Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> t
     }
     if (plan.sun_light) {
         PassTimer timer;
-        shot.sun_light = trace_sun_light(shot);
-        size_t rays = 0;
-        for (const auto& l : shot.sun_light) rays += l.size();
+        std::vector<size_t> sizes(shot.item_count());
+        size_t slots = 0;
+        for (size_t i = 0; i < sizes.size(); ++i) slots += sizes[i] = item_particles(shot, i);
+        shot.sun_light = std::make_unique<SunLightCache>(sizes, glm::vec3(shot.scene.sun_direction),
+                                                         shot.scene.render.shadows);
         shot.passes.push_back({"sun light", true,
-                               "the still sun's light at every particle, once for every frame",
-                               timer.ms(), std::to_string(rays) + " shadow rays"});
+                               "a slot for the still sun's light at every particle, traced when "
+                               "a frame first shows it and kept for the frames after",
+                               timer.ms(), std::to_string(slots) + " slots"});
     }
     return shot;
 }

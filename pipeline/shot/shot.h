@@ -18,6 +18,7 @@
 #include "pipeline/shot/pass_report.h"
 #include "pipeline/shot/rays.h"
 #include "pipeline/shot/sky_strokes.h"
+#include "pipeline/shot/sun_light_cache.h"
 
 namespace pleinair {
 
@@ -41,8 +42,8 @@ MemberCasters member_casters(const Shot& shot, const BuiltTree& tree);
 std::vector<std::vector<StrokeCaster>> imported_casters(const Shot& shot, const glm::vec3& sun);
 
 struct ShotOptions {
-    // Each particle's light from a still sun, traced once for every frame (animations); off,
-    // frames trace it for the particles they show (a still traces fewer rays that way). The
+    // Each particle's light from a still sun, kept in the shot for every frame once a frame
+    // has traced it (animations); off, each frame traces it for the particles it shows. The
     // light is the same either way.
     bool cache_sun_light = false;
     // An earlier shot of the same trees and landscape (the same objects) whose families name
@@ -58,7 +59,7 @@ struct ShotPlan {
     bool shadows = false;     // the sun casts shadows and something is there to cast them
     bool sun_moves = false;   // a keyed sun: its scene and the light are traced per frame
     bool underpaint = false;  // a visible mesh (terrain, water, rocks): the camera's ray scene
-    bool sun_light = false;   // the light of every particle traced once, in the shot
+    bool sun_light = false;   // each particle's light kept in the shot once traced
 };
 
 // What a camera-scene geometry is painted with underneath: a material, or the terrain's (which
@@ -88,8 +89,9 @@ struct Shot {
     std::vector<ViewSurface> view_surfaces;
     std::unique_ptr<RayScene> sun_rays;  // plan.shadows and a still sun
     // plan.sun_light: per item (trees, then surface chunks), per particle in the order
-    // for_each_particle visits them, the light reaching it.
-    std::vector<std::vector<float>> sun_light;
+    // for_each_particle visits them, the light reaching it, traced when a frame first shows
+    // the particle (the one part of a shot that frames fill in, sun_light_cache.h).
+    std::unique_ptr<SunLightCache> sun_light;
     // Per item, its particles grouped by place with the bounds a frame culls them by, a group
     // at a time (particle_clusters.h).
     std::vector<ItemClusters> clusters;

@@ -250,6 +250,40 @@ TEST(Scatter, PoissonSpacingInsideTheRegionWithTheFamilyMix) {
     EXPECT_NE(other.front().seed, trees.front().seed);
 }
 
+// A path and a glade stay free of trunks; the trees elsewhere are the ones planted without them
+// (a clearing only withholds, the draws stay aligned).
+TEST(Scatter, ClearingsHoldNoTrunkAndMoveNoOtherTree) {
+    TerrainParams t;
+    ScatterParams p;
+    p.radius = 60;
+    p.min_distance = 4;
+    const std::vector<ScatteredTree> open = scatter_trees(t, 1, p, 5, 0);
+    p.clearings = {{{-50, 5}, {40, -5}, 3.5}, {{20, 30}, {20, 30}, 8}};
+    const std::vector<ScatteredTree> cleared = scatter_trees(t, 1, p, 5, 0);
+    ASSERT_GT(open.size(), 300u);
+    size_t inside = 0;
+    for (const ScatteredTree& a : open) {
+        const glm::dvec2 q(a.position.x, a.position.z);
+        inside +=
+            clearing_distance(p.clearings[0], q) < 3.5 || clearing_distance(p.clearings[1], q) < 8;
+    }
+    EXPECT_GT(inside, 20u);
+    EXPECT_EQ(cleared.size(), open.size() - inside);
+    size_t k = 0;
+    for (const ScatteredTree& a : cleared) {
+        const glm::dvec2 q(a.position.x, a.position.z);
+        EXPECT_GE(clearing_distance(p.clearings[0], q), 3.5);
+        EXPECT_GE(clearing_distance(p.clearings[1], q), 8.0);
+        while (k < open.size() && open[k].seed != a.seed) ++k;
+        ASSERT_LT(k, open.size()) << "a tree planted only with the clearings";
+        EXPECT_EQ(open[k].position, a.position);
+    }
+    // A point on the segment, at its end and past it.
+    EXPECT_DOUBLE_EQ(clearing_distance({{0, 0}, {10, 0}, 1}, {5, 2}), 2.0);
+    EXPECT_DOUBLE_EQ(clearing_distance({{0, 0}, {10, 0}, 1}, {13, 4}), 5.0);
+    EXPECT_DOUBLE_EQ(clearing_distance({{3, 3}, {3, 3}, 1}, {6, 7}), 5.0);
+}
+
 TEST(Scatter, NoTreeOnSteepSlopesOrInWater) {
     TerrainParams t;
     t.noise_amplitude = 0;

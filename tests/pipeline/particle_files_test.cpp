@@ -419,7 +419,10 @@ TEST_F(ParticleScene, ParticlesCastTheSunsShadowsOnEachOther) {
             for (size_t j = 0; j < S.size(); ++j) {
                 if (S.material[j] != 0) continue;
                 const float r = glm::length(glm::vec2(S.position[j].x, S.position[j].z));
-                const float l = shot.sun_light[trees + c][j];
+                bool cast = false;
+                const float l = shot.sun_light->light(
+                    *shot.sun_rays, trees + c, j,
+                    particle_origin(shot, trees + c, SpriteKind::kSurface, j), cast);
                 if (r < 0.3f) under += l, ++n_under;
                 if (r > 1.6f) away += l, ++n_away;
             }

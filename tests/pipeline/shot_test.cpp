@@ -63,17 +63,31 @@ TEST(Shot, CachedSunLightPaintsTheSameBytesAsRaysPerFrame) {
     const Shot cached = build_shot(lit_scene(), o);
     ASSERT_FALSE(traced.plan.sun_light);
     ASSERT_TRUE(cached.plan.sun_light);
-    ASSERT_EQ(cached.sun_light.size(), cached.item_count());
-    FrameReport a, b;
-    const Frame fa = paint(traced, &a), fb = paint(cached, &b);
+    ASSERT_EQ(cached.sun_light->items(), cached.item_count());
+    // Nothing is traced before a frame asks.
+    for (size_t i = 0; i < cached.item_count(); ++i)
+        for (size_t j = 0; j < cached.sun_light->size(i); ++j)
+            ASSERT_LT(cached.sun_light->known(i, j), 0.0f);
+    FrameReport a, b, c;
+    const Frame fa = paint(traced, &a), fb = paint(cached, &b), fc = paint(cached, &c);
     EXPECT_GT(a.shadow_rays, 0u);
-    EXPECT_EQ(b.shadow_rays, 0u) << "the frame takes every particle's light from the shot";
+    // The first frame traces the light of the particles it shows, as many rays as without the
+    // cache; the next takes all of it from the shot.
+    EXPECT_EQ(b.shadow_rays, a.shadow_rays);
+    EXPECT_EQ(c.shadow_rays, 0u) << "the second frame takes every particle's light from the shot";
     EXPECT_TRUE(same_pixels(fa, fb));
-    // The light did something: some particle is in shadow.
+    EXPECT_TRUE(same_pixels(fa, fc));
+    // The light did something: some particle is in shadow; and only what was shown is known.
     float darkest = 1;
-    for (const auto& item : cached.sun_light)
-        for (float l : item) darkest = std::min(darkest, l);
+    size_t known = 0, slots = 0;
+    for (size_t i = 0; i < cached.item_count(); ++i)
+        for (size_t j = 0; j < cached.sun_light->size(i); ++j, ++slots) {
+            const float l = cached.sun_light->known(i, j);
+            if (l >= 0) darkest = std::min(darkest, l), ++known;
+        }
     EXPECT_LT(darkest, 0.5f);
+    EXPECT_EQ(known, size_t(a.shadow_rays));
+    EXPECT_LE(known, slots);
 }
 
 TEST(Shot, FrameSettingsThatDifferFromTheCacheTraceInstead) {
