@@ -68,6 +68,17 @@ struct ShadowContext {
 
 constexpr uint64_t kOpaqueDepth = 10 * 65536;  // 2^-10: a thousandth of the light
 
+// The stroke mask's opacity at (s, t) on a card (0 outside it), its noise asked for only
+// inside.
+template <class Noise>
+float card_opacity(const StrokeShaderParams& p, const EdgeTable& edge, float s, float t,
+                   Noise&& noise) {
+    if (!(s > 0.0f && s < 1.0f && t > 0.0f && t < 1.0f)) return 0.0f;
+    const float e = edge_mask(edge, s, t, p.stroke_fullness);
+    if (e <= p.stroke_feather_min) return 0.0f;
+    return stroke_opacity(p, stroke_noise(noise(), s, t, 1), e);
+}
+
 // Opacity of caster `c` where the ray crosses its card.
 float caster_opacity(const CasterSet& set, uint32_t prim, const glm::vec3& org,
                      const glm::vec3& dir) {
@@ -80,11 +91,7 @@ float caster_opacity(const CasterSet& set, uint32_t prim, const glm::vec3& org,
     const glm::vec3 rel = org + dir * t - center;
     const float s = 0.5f + 0.5f * glm::dot(rel, c.axis_s) / c.half_w;
     const float tt = 0.5f + 0.5f * glm::dot(rel, c.axis_t) / c.half_l;
-    if (!(s > 0.0f && s < 1.0f && tt > 0.0f && tt < 1.0f)) return 0.0f;
-    const StrokeShaderParams& p = *set.shader;
-    const float e = edge_mask(*set.edge, s, tt, p.stroke_fullness);
-    if (e <= p.stroke_feather_min) return 0.0f;
-    return stroke_opacity(p, stroke_noise(c.noise, s, tt, 1), e);
+    return card_opacity(*set.shader, *set.edge, s, tt, [&] { return c.noise; });
 }
 
 // Opacity of a member's card j where a ray (in the member's space, running towards the sun)
@@ -95,25 +102,21 @@ float member_opacity(const MemberCasters& m, uint32_t j, const glm::vec3& org,
     if (!(len > 0.0f)) return 0.0f;
     const glm::vec3 sun = dir / len;
     const StrokeShaderParams& p = *m.shader;
-    glm::vec3 a0, b0;
+    glm::vec3 a0, b0, axis_s, axis_t;
     sun_card_frame(sun, a0, b0);
     const float label = m.label[j];
-    const double ang = stroke_angle_jitter(p, label);
-    const float ca = static_cast<float>(pmath::cos(ang)), sa = static_cast<float>(pmath::sin(ang));
-    const glm::vec3 axis_s = ca * a0 + sa * b0, axis_t = -sa * a0 + ca * b0;
+    sun_card_axes(p, label, a0, b0, axis_s, axis_t);
     const float half_w = 0.5f * m.stroke_width * stroke_size_jitter(p, label);
     const float half_l = half_w * p.stroke_aspect;
     const glm::vec3& center = m.position[j];
     const glm::vec3 rel = org + sun * glm::dot(center - org, sun) - center;
     const float s = 0.5f + 0.5f * glm::dot(rel, axis_s) / half_w;
     const float tt = 0.5f + 0.5f * glm::dot(rel, axis_t) / half_l;
-    if (!(s > 0.0f && s < 1.0f && tt > 0.0f && tt < 1.0f)) return 0.0f;
-    const float e = edge_mask(*m.edge, s, tt, p.stroke_fullness);
-    if (e <= p.stroke_feather_min) return 0.0f;
-    const StrokeNoise noise =
-        noise_of(stroke_constants(p, glm::dot(m.normal[j], sun), m.center_distance[j],
-                                  m.branch_distance[j], label, 0, 1.0f, 0.0f, 0.0f, false, false));
-    return stroke_opacity(p, stroke_noise(noise, s, tt, 1), e);
+    return card_opacity(p, *m.edge, s, tt, [&] {
+        return noise_of(stroke_constants(p, glm::dot(m.normal[j], sun), m.center_distance[j],
+                                         m.branch_distance[j], label, 0, 1.0f, 0.0f, 0.0f, false,
+                                         false));
+    });
 }
 
 // Whether the ray has met card `key` before (then it is not counted again).

@@ -17,6 +17,7 @@
 
 #include "generators/quad_mesh.h"
 #include "pipeline/input/settings.h"
+#include "shading/portable_math.h"
 #include "shading/stroke_shader.h"
 
 namespace pleinair {
@@ -78,6 +79,16 @@ inline void sun_card_frame(const glm::vec3& sun, glm::vec3& a0, glm::vec3& b0) {
     const glm::vec3 ref = overhead ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
     a0 = glm::normalize(glm::cross(ref, sun));
     b0 = glm::cross(sun, a0);
+}
+
+// The axes of a caster card in that frame, turned in its plane by its stroke's angle jitter
+// (leaf and imported strokes' cards in the world, a member's in the sun scene's filter).
+inline void sun_card_axes(const StrokeShaderParams& p, float label, const glm::vec3& a0,
+                          const glm::vec3& b0, glm::vec3& axis_s, glm::vec3& axis_t) {
+    const double ang = stroke_angle_jitter(p, label);
+    const float ca = static_cast<float>(pmath::cos(ang)), sa = static_cast<float>(pmath::sin(ang));
+    axis_s = ca * a0 + sa * b0;
+    axis_t = -sa * a0 + ca * b0;
 }
 
 // A grown tree's leaf strokes as shadow casters in its own space (IV.4.2), for the sun's scenes

@@ -76,11 +76,7 @@ void leaf_casters(const SceneDesc& scene, const BuiltTree& b, const glm::vec3& s
         StrokeCaster& c = out[j];
         c.center = pl.place(L.position[j]);
         const float jitter = stroke_size_jitter(p, L.label[j]);
-        const double ang = stroke_angle_jitter(p, L.label[j]);
-        const float ca = static_cast<float>(pmath::cos(ang)),
-                    sa = static_cast<float>(pmath::sin(ang));
-        c.axis_s = ca * a0 + sa * b0;
-        c.axis_t = -sa * a0 + ca * b0;
+        sun_card_axes(p, L.label[j], a0, b0, c.axis_s, c.axis_t);
         c.half_w = static_cast<float>(0.5 * w * jitter);
         c.half_l = c.half_w * p.stroke_aspect;
         c.noise = noise_of(stroke_constants(p, glm::dot(pl.turn(L.normal[j]), sun),
@@ -129,11 +125,7 @@ std::vector<std::vector<StrokeCaster>> imported_casters(const Shot& shot, const 
             StrokeCaster k;
             k.center = in.world;
             const float jitter = stroke_size_jitter(p, in.label);
-            const double ang = stroke_angle_jitter(p, in.label);
-            const float ca = static_cast<float>(pmath::cos(ang)),
-                        sa = static_cast<float>(pmath::sin(ang));
-            k.axis_s = ca * a0 + sa * b0;
-            k.axis_t = -sa * a0 + ca * b0;
+            sun_card_axes(p, in.label, a0, b0, k.axis_s, k.axis_t);
             k.half_w = static_cast<float>(0.5 * in.width * jitter);
             k.half_l = k.half_w * p.stroke_aspect;
             k.noise = noise_of(stroke_constants(p, glm::dot(in.normal, sun), 0.5f, 0.5f, in.label,
