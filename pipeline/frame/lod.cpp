@@ -281,13 +281,12 @@ namespace {
 // A tree's distance values for leaves and bark, replayed along the track from its first frame,
 // each step bounded so that no fade completes in fewer than kMinFadeFrames frames, however fast
 // the camera goes.
+// The bounds on a step are the family's (leaf_rates, by family) and kBarkFadeSpan's.
 void replay_tree(const Shot& shot, size_t i, const std::vector<FrameView>& path,
-                 const RenderSettings& rs, TreeLod& t) {
+                 const std::vector<double>& leaf_rates, double trunk_rate, TreeLod& t) {
     const BuiltTree& b = (*shot.trees)[i];
     const glm::dvec3 center = shot.placements[i].place(b.tree().center);
-    const FadeParams& fp = shot.scene.families[b.family].params.leaves.fade;
-    const double leaf_rate = max_fade_rate(std::max(fp.length_min, fp.length.lo), rs.fade_gain);
-    const double trunk_rate = max_fade_rate(kBarkFadeSpan, rs.fade_gain);
+    const double leaf_rate = leaf_rates[b.family];
     for (size_t k = 0; k < path.size(); ++k) {
         const DistanceCircles& pc = path[k].circles;
         const double depth = view_depth(path[k].camera, center);
@@ -354,8 +353,15 @@ FrameLod level_of_detail(const Shot& shot, const FrameView& view, const RenderSe
     lod.trees.resize(trees.size());
     const std::vector<FrameView> path = replay_path(shot.scene, view);
     const float max_growth = std::max(1.0f, rs.max_leaf_growth);
+    // Per family, not per tree: each bound samples the fade's slope 256 times.
+    std::vector<double> leaf_rates;
+    for (const Family& f : shot.scene.families) {
+        const FadeParams& fp = f.params.leaves.fade;
+        leaf_rates.push_back(max_fade_rate(std::max(fp.length_min, fp.length.lo), rs.fade_gain));
+    }
+    const double trunk_rate = max_fade_rate(kBarkFadeSpan, rs.fade_gain);
     tbb::parallel_for(size_t{0}, trees.size(), [&](size_t i) {
-        replay_tree(shot, i, path, rs, lod.trees[i]);
+        replay_tree(shot, i, path, leaf_rates, trunk_rate, lod.trees[i]);
         if (!lod.trunks) lod.trees[i].trunk = 0;
     });
     if (!lod.leaves) return lod;
