@@ -16,6 +16,7 @@
 #include <stdexcept>
 
 #include "pipeline/cli/commands.h"
+#include "pipeline/frame/buffer_pool.h"
 #include "pipeline/frame/paint_frame.h"
 #include "pipeline/frame/seen_memo.h"
 #include "pipeline/input/error.h"
@@ -213,6 +214,10 @@ std::vector<std::pair<double, int>> paint_frames(const Shot& shot, const std::ve
         int frame = 0;
         std::string path;
     };
+    // The memory of the frames' image and stroke layers, kept from one to the next
+    // (buffer_pool.h); declared before the pending write, which hands its frame's image back
+    // once on disk, so it outlives it.
+    BufferPool buffers;
     std::unique_ptr<PendingWrite> pending;
     // Frames painted in order share most of their occlusion rays (seen_memo.h).
     SeenMemo memo;
@@ -244,6 +249,7 @@ std::vector<std::pair<double, int>> paint_frames(const Shot& shot, const std::ve
         }
         FrameSettings settings = scene_frame_settings(shot.scene, cmd.aovs);
         settings.seen_memo = &memo;
+        settings.buffers = &buffers;
         if (!pending) last_done = clock.ms();
         FrameReport report;
         auto frame = std::make_shared<Frame>();
@@ -253,8 +259,9 @@ std::vector<std::pair<double, int>> paint_frames(const Shot& shot, const std::ve
         });
         if (cmd.explain && times.empty() && !pending) print_explain(shot, report, what, shot_ms);
         settle();
-        auto write = [path, frame, clock] {
+        auto write = [path, frame, clock, pool = &buffers] {
             write_frame(path, *frame);
+            pool->give(std::move(frame->rgba));
             return clock.ms();
         };
         // With one thread asked for, the write runs in turn (deferred to its settle).

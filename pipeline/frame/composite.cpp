@@ -515,12 +515,12 @@ void TilePainter::samples(uint32_t idx, const SpriteSpan& r, const SpriteMateria
 
 }  // namespace
 
-Frame make_frame(const Camera& cam, bool aovs) {
+Frame make_frame(const Camera& cam, bool aovs, BufferPool* pool) {
     Frame frame;
     frame.width = cam.width;
     frame.height = cam.height;
     const size_t npix = static_cast<size_t>(cam.width) * cam.height;
-    frame.rgba.assign(4 * npix, 0.0f);
+    frame.rgba = pooled(pool, 4 * npix, 0.0f);
     frame.has_aovs = aovs;
     if (aovs) {
         frame.depth.assign(npix, std::numeric_limits<float>::infinity());
@@ -534,13 +534,13 @@ Frame make_frame(const Camera& cam, bool aovs) {
 StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins& bins,
                           const FramePlan& plan, const RenderSettings& rs, Frame& frame,
                           const std::function<void(const char*, double)>* progress,
-                          const StrokeLayer* behind) {
+                          const StrokeLayer* behind, BufferPool* pool) {
     StrokeLayer out;
     out.width = frame.width, out.height = frame.height;
     out.cutoff = rs.coverage_cutoff;
     const size_t npix = static_cast<size_t>(frame.width) * frame.height;
-    out.color.assign(3 * npix, 0.0f);
-    out.through.assign(npix, 1.0f);
+    out.color = pooled(pool, 3 * npix, 0.0f);
+    out.through = pooled(pool, npix, 1.0f);
     if (plan.pigment) out.pigment.assign(4 * npix, 0.0f);
     const PigmentTable* pigments = plan.pigment ? &PigmentTable::shared() : nullptr;
     CanvasWeave weave;
@@ -660,11 +660,17 @@ StrokeLayer paint_stage(const FrameContext& ctx, const SpriteSet& sprites, const
                         Frame& frame) {
     StagePhase phase(ctx, "paint", true);
     StrokeLayer strokes = paint_strokes(ctx.shot, sprites, bins, ctx.plan, ctx.render(), frame,
-                                        &ctx.settings.progress);
+                                        &ctx.settings.progress, nullptr, ctx.settings.buffers);
     ctx.report.fragments = strokes.fragments;
     phase.done("strokes front to back, tiles in parallel, each until it is covered",
                std::to_string(strokes.fragments) + " fragments");
     return strokes;
+}
+
+void give_back(StrokeLayer& layer, BufferPool* pool) {
+    if (!pool) return;
+    pool->give(std::move(layer.color));
+    pool->give(std::move(layer.through));
 }
 
 void composite_stage(const FrameContext& ctx, const StrokeLayer& strokes, Frame& frame) {

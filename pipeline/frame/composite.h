@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include "pipeline/frame/buffer_pool.h"
 #include "pipeline/frame/frame_context.h"
 #include "pipeline/frame/frame_image.h"
 #include "pipeline/frame/frame_plan.h"
@@ -17,8 +18,9 @@ struct Shot;
 struct SceneDesc;
 class RayScene;
 
-// A frame of the camera's size, all zero, AOV buffers allocated when planned.
-Frame make_frame(const Camera& cam, bool aovs);
+// A frame of the camera's size, all zero, AOV buffers allocated when planned; its image from
+// `pool` when given.
+Frame make_frame(const Camera& cam, bool aovs, BufferPool* pool = nullptr);
 
 // The strokes of a frame composited front to back, before what lies under them: per pixel the
 // premultiplied colour gathered and the light still let through (1 where no stroke is).
@@ -47,11 +49,14 @@ struct StrokeLayer {
 // the plan asks.
 // `progress`, when set, hears ("paint", done) at each whole percent of the tiles.
 // `behind`, when set, is a layer these strokes lie behind: they are painted only where it
-// leaves light through (the painted sky behind every other stroke).
+// leaves light through (the painted sky behind every other stroke). The layer's colour and light
+// come from `pool` when given (give_back returns them).
 StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& sprites, const TileBins& bins,
                           const FramePlan& plan, const RenderSettings& settings, Frame& frame,
                           const std::function<void(const char*, double)>* progress = nullptr,
-                          const StrokeLayer* behind = nullptr);
+                          const StrokeLayer* behind = nullptr, BufferPool* pool = nullptr);
+// The layer's colour and light handed to `pool` (none: nothing happens).
+void give_back(StrokeLayer& layer, BufferPool* pool);
 
 // The strokes over what the frame holds beneath them: equal to compositing every stroke, the
 // underpainting and the background back to front with "over", to within the cutoff.

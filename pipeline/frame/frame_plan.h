@@ -14,6 +14,7 @@
 
 namespace pleinair {
 
+class BufferPool;
 class SeenMemo;
 
 struct Shot;
@@ -44,6 +45,9 @@ struct FrameSettings {
     // Frames of one shot painted in order (animate, the coherence bench): the occlusion rays'
     // answers kept from one frame to the next (seen_memo.h). Null casts every ray.
     SeenMemo* seen_memo = nullptr;
+    // Frames painted in a row: the image and stroke layers' memory kept from the frame before
+    // (buffer_pool.h). Null allocates them anew.
+    BufferPool* buffers = nullptr;
 };
 
 // What paint_frame throws when FrameSettings::abandon says so between stages.

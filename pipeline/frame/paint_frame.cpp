@@ -86,14 +86,16 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
     if (plan.imposters) imposters_stage(ctx, sprites, seen);
     const TileBins bins = order_stage(ctx, sprites.sprites);
 
-    Frame frame = make_frame(view.camera, plan.aovs);
+    Frame frame = make_frame(view.camera, plan.aovs, settings.buffers);
     StrokeLayer strokes = paint_stage(ctx, sprites, bins, frame);
-    const std::optional<SkyLayer> sky =
+    std::optional<SkyLayer> sky =
         plan.sky ? std::optional<SkyLayer>(sky_stage(ctx, strokes, frame)) : std::nullopt;
     background_stage(ctx, strokes, sky ? &sky->layer : nullptr, frame);
     if (plan.underpaint) underpaint_stage(ctx, sun_rays, strokes, frame);
     composite_stage(ctx, strokes, frame);
     if (plan.trace) rep.trace = trace_of(sprites, strokes, sky ? &*sky : nullptr);
+    give_back(strokes, settings.buffers);
+    if (sky) give_back(sky->layer, settings.buffers);
     return frame;
 }
 

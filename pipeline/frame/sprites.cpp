@@ -408,6 +408,8 @@ struct ItemSprites {
         }
         const bool tree = item < shot.trees->size();
         const SpriteKind first = tree ? SpriteKind::kBark : SpriteKind::kSurface;
+        // At most one sprite a particle looked at: one allocation, not a doubling series.
+        out.sprites.reserve(shown[0].size() + shown[1].size());
         for (int k = 0; k < 2; ++k) {
             std::sort(shown[k].begin(), shown[k].end());
             const SpriteKind kind = k == 0 ? first : SpriteKind::kLeaf;
@@ -441,6 +443,10 @@ SpriteSet make_sprites(const SpriteStageInput& input) {
         by_cluster ? make.by_cluster() : make.each();
     });
     SpriteSet all;
+    // One allocation of the frame's size: a doubling series would touch fresh pages each frame.
+    size_t total = 0;
+    for (const SpriteSet& s : per_item) total += s.sprites.size();
+    all.sprites.reserve(total);
     for (SpriteSet& s : per_item) {
         for (Sprite& sp : s.sprites) {
             if (sp.grid >= 0) sp.grid += static_cast<int32_t>(all.grids.size());

@@ -308,6 +308,7 @@ StudioFrame Workspace::paint(std::optional<int> frame, bool preview,
     }
     FrameSettings settings = scene_frame_settings(shot_->scene);
     settings.abandon = abandon;
+    settings.buffers = &buffers_;
     const auto t0 = std::chrono::steady_clock::now();
     out.frame = paint_frame(*shot_, view, settings, &out.report);
     out.paint_ms = ms_since(t0);

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "pipeline/frame/buffer_pool.h"
 #include "pipeline/frame/frame_image.h"
 #include "pipeline/frame/frame_report.h"
 #include "pipeline/input/scene.h"
@@ -123,6 +124,8 @@ class Workspace {
     std::shared_ptr<const std::vector<BuiltTree>> trees_;
     std::shared_ptr<const BuiltLandscape> land_;
     std::unique_ptr<Shot> shot_;
+    // Stroke layers' memory kept from one painted frame to the next (buffer_pool.h).
+    BufferPool buffers_;
     // What the changes since the shot was built reach: the deepest level beyond the camera,
     // the families to regrow, and whether the camera moved.
     std::optional<ChangeLevel> pending_;

@@ -1,11 +1,11 @@
 #!/bin/bash
-# Frame times of two pleinair binaries, interleaved (old, new, new with thinning; twice), as
-# BENCHMARKS.md's "Frames that cost what they show" measures them:
-#   tests/bench/compare_frames.sh OLD_BINARY NEW_BINARY
-# Median ms a frame over frames 20-27 of each walk at 480x270 and 1920x1080.
+# Frame times of pleinair binaries, interleaved (each binary in turn, twice), as BENCHMARKS.md's
+# "Frames that cost what they show" measures them:
+#   tests/bench/compare_frames.sh BINARY...
+# Median ms a frame over frames 20-27 of each walk at 480x270, at the walks' preview size
+# (640x360) and at 1920x1080, for each binary; the last one again with strokes thinned under
+# 6 px at the two small sizes.
 set -euo pipefail
-OLD=$1
-NEW=$2
 cd "$(dirname "$0")/../.."
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
@@ -14,15 +14,17 @@ run() { # binary shot width height [extra arguments]
         "${@:5}" --frames 20-27 --progress log -o "$out/f_####.png" 2>&1 |
         tail -1 | sed -E 's/.*median ([0-9]+) ms.*/\1/'
 }
+last=${*: -1}
 for shot in forest-edge-walk mortefontaine-walk; do
-    for size in "480 270" "1920 1080"; do
+    for size in "480 270" "640 360" "1920 1080"; do
         read -r w h <<<"$size"
         for rep in 1 2; do
-            o=$(run "$OLD" "$shot" "$w" "$h")
-            n=$(run "$NEW" "$shot" "$w" "$h")
-            t=""
-            if [ "$w" = 480 ]; then t=$(run "$NEW" "$shot" "$w" "$h" --set /render/thin_below_px=6); fi
-            echo "$shot ${w}x${h} run $rep: old $o new $n new-thinned $t"
+            line="$shot ${w}x${h} run $rep:"
+            for bin in "$@"; do line="$line $(run "$bin" "$shot" "$w" "$h")"; done
+            if [ "$w" != 1920 ]; then
+                line="$line thinned $(run "$last" "$shot" "$w" "$h" --set /render/thin_below_px=6)"
+            fi
+            echo "$line"
         done
     done
 done

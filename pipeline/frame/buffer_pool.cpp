@@ -1,0 +1,43 @@
+// BufferPool: a short list of vectors under a mutex; taken and given a few times a frame.
+#include "pipeline/frame/buffer_pool.h"
+
+#include <algorithm>
+
+namespace pleinair {
+
+std::vector<float> BufferPool::take(size_t n, float value) {
+    std::vector<float> v;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        auto best = kept_.end();
+        for (auto it = kept_.begin(); it != kept_.end(); ++it)
+            if (it->capacity() >= n && (best == kept_.end() || it->capacity() < best->capacity()))
+                best = it;
+        if (best != kept_.end()) {
+            v = std::move(*best);
+            kept_.erase(best);
+        }
+    }
+    v.assign(n, value);
+    return v;
+}
+
+void BufferPool::give(std::vector<float>&& v) {
+    if (v.capacity() == 0) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    kept_.push_back(std::move(v));
+    v = {};
+    if (kept_.size() > kKept) {
+        auto smallest = std::min_element(
+            kept_.begin(), kept_.end(),
+            [](const auto& a, const auto& b) { return a.capacity() < b.capacity(); });
+        kept_.erase(smallest);
+    }
+}
+
+std::vector<float> pooled(BufferPool* pool, size_t n, float value) {
+    if (pool) return pool->take(n, value);
+    return std::vector<float>(n, value);
+}
+
+}  // namespace pleinair

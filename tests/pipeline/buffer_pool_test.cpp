@@ -1,0 +1,77 @@
+// Buffers kept from frame to frame (buffer_pool.h): what the pool hands back, and frames
+// painted in buffers another frame left dirty, byte for byte those painted in new ones.
+#include "pipeline/frame/buffer_pool.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/scene.h"
+#include "pipeline/shot/shot.h"
+#include "tests/test_util.h"
+
+namespace pleinair {
+namespace {
+
+bool all_equal(const std::vector<float>& v, float x) {
+    return std::all_of(v.begin(), v.end(), [x](float y) { return y == x; });
+}
+
+TEST(BufferPool, HandsBackTheSmallestKeptBufferThatFitsFilledAsAsked) {
+    BufferPool pool;
+    std::vector<float> small(1000, 7.0f), large(5000, 8.0f);
+    const float *small_at = small.data(), *large_at = large.data();
+    pool.give(std::move(small));
+    pool.give(std::move(large));
+    std::vector<float> a = pool.take(900, 1.0f);
+    EXPECT_EQ(a.data(), small_at);
+    EXPECT_EQ(a.size(), 900u);
+    EXPECT_TRUE(all_equal(a, 1.0f));
+    std::vector<float> b = pool.take(4000, 0.0f);
+    EXPECT_EQ(b.data(), large_at);
+    EXPECT_EQ(b.size(), 4000u);
+    EXPECT_TRUE(all_equal(b, 0.0f));
+    // Nothing kept fits: a new one.
+    std::vector<float> c = pool.take(6000, 2.0f);
+    EXPECT_NE(c.data(), small_at);
+    EXPECT_NE(c.data(), large_at);
+    EXPECT_TRUE(all_equal(c, 2.0f));
+    EXPECT_EQ(pooled(nullptr, 3, 4.0f), std::vector<float>(3, 4.0f));
+}
+
+TEST(BufferPool, KeepsTheEightLargest) {
+    BufferPool pool;
+    for (size_t k = 1; k <= 10; ++k) pool.give(std::vector<float>(100 * k));
+    pool.give(std::vector<float>());  // nothing to keep
+    // Smallest first: 300 .. 1000 came back, 100 and 200 were let go.
+    for (size_t k = 3; k <= 10; ++k) EXPECT_EQ(pool.take(1, 0.0f).capacity(), 100 * k);
+    EXPECT_EQ(pool.take(1, 0.0f).capacity(), 1u);
+}
+
+// A walk's frame painted after another frame left the pool its image and stroke layers,
+// against the same frame painted in new buffers.
+TEST(BufferPool, FramesPaintedInKeptBuffersAreTheSameBytes) {
+    SceneDesc scene =
+        load_scene(test::source_dir() / "presets" / "scenes" / "forest-edge-walk.json");
+    scene.camera_params.width = 192;
+    scene.camera_params.height = 108;
+    const Shot shot = build_shot(std::move(scene));
+    const FrameSettings fresh = scene_frame_settings(shot.scene);
+    FrameSettings kept = fresh;
+    BufferPool pool;
+    kept.buffers = &pool;
+    auto view = [&](int f) { return view_at(shot.scene, frame_time(f, shot.scene.fps)); };
+    Frame before = paint_frame(shot, view(10), kept);
+    const float* image_at = before.rgba.data();
+    pool.give(std::move(before.rgba));
+    const Frame a = paint_frame(shot, view(40), kept);
+    const Frame b = paint_frame(shot, view(40), fresh);
+    EXPECT_EQ(a.rgba.data(), image_at) << "the frame before's image was taken again";
+    ASSERT_EQ(a.rgba.size(), b.rgba.size());
+    EXPECT_EQ(std::memcmp(a.rgba.data(), b.rgba.data(), a.rgba.size() * sizeof(float)), 0);
+}
+
+}  // namespace
+}  // namespace pleinair
