@@ -72,6 +72,34 @@ class ProgressReport {
     double painted_ms_ = 0;
 };
 
+// --explain after the frames: each pass's median time over the frames painted after the one
+// explained. The first frame casts every occlusion ray and traces the light of every particle
+// it shows; the frames after it reuse most of both, so their cost is what a run pays a frame.
+void print_later_passes(const std::vector<std::vector<PassReport>>& later) {
+    if (later.empty()) return;
+    std::printf("  frame passes, median over the %zu frames after the first:\n", later.size());
+    auto median = [](std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        const size_t n = v.size();
+        return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    };
+    std::vector<double> totals;
+    for (const auto& frame : later) {
+        double t = 0;
+        for (const PassReport& p : frame) t += p.ms;
+        totals.push_back(t);
+    }
+    for (size_t k = 0; k < later.front().size(); ++k) {
+        std::vector<double> ms;
+        for (const auto& frame : later)
+            if (k < frame.size() && frame[k].name == later.front()[k].name)
+                ms.push_back(frame[k].ms);
+        if (ms.size() == later.size())
+            std::printf("    %-18s %9.1f ms\n", later.front()[k].name.c_str(), median(ms));
+    }
+    std::printf("  %-20s %9.1f ms\n", "all passes", median(totals));
+}
+
 // The frames asked for, each within the track; bad input before any work.
 }  // namespace
 
@@ -219,6 +247,7 @@ std::vector<std::pair<double, int>> paint_frames(const Shot& shot, const std::ve
     // once on disk, so it outlives it.
     BufferPool buffers;
     std::unique_ptr<PendingWrite> pending;
+    std::vector<std::vector<PassReport>> later;  // --explain: the passes of frames after the first
     // Frames painted in order share most of their occlusion rays (seen_memo.h).
     SeenMemo memo;
     const PassTimer clock;
@@ -257,7 +286,10 @@ std::vector<std::pair<double, int>> paint_frames(const Shot& shot, const std::ve
             *frame = paint_frame(shot, view_at(shot.scene, frame_time(f, shot.scene.fps)), settings,
                                  &report);
         });
-        if (cmd.explain && times.empty() && !pending) print_explain(shot, report, what, shot_ms);
+        if (cmd.explain && times.empty() && !pending)
+            print_explain(shot, report, what, shot_ms);
+        else if (cmd.explain)
+            later.push_back(report.passes);
         settle();
         auto write = [path, frame, clock, pool = &buffers] {
             write_frame(path, *frame);
@@ -271,6 +303,7 @@ std::vector<std::pair<double, int>> paint_frames(const Shot& shot, const std::ve
             std::async(overlap ? std::launch::async : std::launch::deferred, write), f, path});
     }
     settle();
+    print_later_passes(later);
     return times;
 }
 

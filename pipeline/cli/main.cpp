@@ -173,7 +173,9 @@ Command add_animate(CLI::App& app) {
     a->add_option("--video", c->video, "Also encode the frames into FILE.mp4 (ffmpeg, H.264)");
     a->add_flag("--preview", c->preview, "Half resolution, for a quick look");
     a->add_flag("--aovs", c->aovs, "Add depth, object id, alpha, lightness channels (EXR)");
-    a->add_flag("--explain", c->explain, "Print the shot's passes and the first frame's plan");
+    a->add_flag("--explain", c->explain,
+                "Print the shot's passes and the first frame's plan; after the frames, each "
+                "pass's median time over the later frames");
     a->add_option("--set", c->set, "Override a scene key: POINTER=VALUE");
     auto progress = std::make_shared<std::string>("auto");
     a->add_option("--progress", *progress,

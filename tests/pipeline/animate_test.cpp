@@ -109,6 +109,29 @@ TEST_F(Animate, AStillCameraGivesIdenticalFrames) {
     for (int f = 2; f <= 4; ++f) EXPECT_EQ(frame("still", f), frame("still", 1)) << f;
 }
 
+// --explain: the first frame's plan and passes once, and after the frames each pass's median
+// over the frames after the first (which reuse its occlusion answers and light).
+TEST_F(Animate, ExplainAddsEachPassMedianOverTheLaterFrames) {
+    const fs::path s = scene(walk_scene(kWalk));
+    auto count = [](const std::string& text, const std::string& what) {
+        size_t n = 0;
+        for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1))
+            ++n;
+        return n;
+    };
+    auto four = animate(s, "four", "--frames 1-4 --explain");
+    ASSERT_EQ(four.exit_code, 0) << four.err;
+    EXPECT_EQ(count(four.out, "frame plan:"), 1u) << four.out;
+    const size_t median = four.out.find("frame passes, median over the 3 frames after the first:");
+    ASSERT_NE(median, std::string::npos) << four.out;
+    EXPECT_NE(four.out.find("    sprites ", median), std::string::npos) << four.out;
+    EXPECT_NE(four.out.find("  all passes ", median), std::string::npos) << four.out;
+    auto one = animate(s, "one", "--frames 1-1 --explain");
+    ASSERT_EQ(one.exit_code, 0) << one.err;
+    EXPECT_EQ(count(one.out, "frame plan:"), 1u);
+    EXPECT_EQ(one.out.find("median over"), std::string::npos) << one.out;
+}
+
 TEST_F(Animate, ProgressAndSavedLinesForFarms) {
     const fs::path s = scene(walk_scene(kWalk));
     auto r = animate(s, "log", "--frames 2-6x2");
