@@ -26,7 +26,6 @@ void BufferPool::give(std::vector<float>&& v) {
     if (v.capacity() == 0) return;
     std::lock_guard<std::mutex> lock(mutex_);
     kept_.push_back(std::move(v));
-    v = {};
     if (kept_.size() > kKept) {
         auto smallest = std::min_element(
             kept_.begin(), kept_.end(),

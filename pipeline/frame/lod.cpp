@@ -384,10 +384,10 @@ FrameLod level_of_detail(const Shot& shot, const FrameView& view, const RenderSe
     });
     for (size_t i = 0; i < trees.size(); ++i) {
         if (source[i] == i || source[i] == trees.size()) continue;
-        const TreeLod& from = lod.trees[source[i]];
-        TreeLod& t = lod.trees[i];
-        t.kept = from.kept, t.growth = from.growth, t.darkening_lift = from.darkening_lift;
-        t.center = from.center, t.radial = from.radial, t.max_spread = from.max_spread;
+        // The same leaf value by construction; the bark's is the tree's own.
+        const float trunk = lod.trees[i].trunk;
+        lod.trees[i] = lod.trees[source[i]];
+        lod.trees[i].trunk = trunk;
     }
     return lod;
 }
