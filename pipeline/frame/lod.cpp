@@ -53,13 +53,47 @@ float near_field_fade(float near_value, float center_distance, float label, floa
 
 namespace {
 
-// A direction's continuous bin coordinates: elevation and azimuth, each in bin units.
-void direction_bins(const glm::vec3& v, float r, float& e, float& a) {
-    constexpr float kPi = 3.14159265358979f;
-    const float el = pmath::asin(std::clamp(v.y / r, -1.0f, 1.0f));  // -pi/2 .. pi/2
-    const float az = pmath::atan2(v.z, v.x);                         // -pi .. pi
-    e = (el / kPi + 0.5f) * kElevationBins - 0.5f;
-    a = (az / (2 * kPi) + 0.5f) * kAzimuthBins - 0.5f;
+// Where a leaf at distance r and bin coordinates (e, a) reads the bins, and what of its move
+// the bins' extents alone decide: the survivors' search changes only the exponents, so each
+// step costs an exponential per survivor, not a logarithm and an exponential (pmath::pow is
+// exp(y log x), so the factor has the same bits).
+struct SpreadAt {
+    size_t i00 = 0, i01 = 0, i10 = 0, i11 = 0;  // bins (e0, a0), (e0, a1), (e0 + 1, a0), ...
+    float wa0 = 1, wa1 = 0, we0 = 1, we1 = 0;   // bilinear weights
+    bool inside = false;                        // r < the extent R there: it may move
+    double log_ratio = 0;                       // log(r / R)
+
+    // r -> R (r / R)^gamma inside the bins' extent R: survivors move out, the silhouette does
+    // not. Near the centre the move is bounded by max_spread.
+    float factor(const TreeLod& t) const {
+        if (!inside) return 1.0f;
+        const glm::vec2* g = t.radial.data();
+        const float gx =
+            (g[i00].x * wa0 + g[i01].x * wa1) * we0 + (g[i10].x * wa0 + g[i11].x * wa1) * we1;
+        if (!(gx < 1.0f)) return 1.0f;
+        return std::min(t.max_spread,
+                        static_cast<float>(pmath::exp(static_cast<double>(gx - 1.0f) * log_ratio)));
+    }
+};
+
+SpreadAt spread_at(const TreeLod& t, float r, float e, float a) {
+    e = std::clamp(e, 0.0f, kElevationBins - 1.0f);
+    const int e0 = std::min(static_cast<int>(e), kElevationBins - 2);
+    const float fe = e - e0;
+    const float af = std::floor(a);
+    const float fa = a - af;
+    const int a0 = (static_cast<int>(af) + kAzimuthBins) % kAzimuthBins;
+    const int a1 = (a0 + 1) % kAzimuthBins;
+    auto bin = [](int ei, int ai) { return static_cast<size_t>(ei * kAzimuthBins + ai); };
+    SpreadAt s;
+    s.i00 = bin(e0, a0), s.i01 = bin(e0, a1), s.i10 = bin(e0 + 1, a0), s.i11 = bin(e0 + 1, a1);
+    s.wa0 = 1 - fa, s.wa1 = fa, s.we0 = 1 - fe, s.we1 = fe;
+    const glm::vec2* g = t.radial.data();
+    const float gy = (g[s.i00].y * s.wa0 + g[s.i01].y * s.wa1) * s.we0 +
+                     (g[s.i10].y * s.wa0 + g[s.i11].y * s.wa1) * s.we1;
+    s.inside = r < gy;
+    if (s.inside) s.log_ratio = pmath::log(static_cast<double>(r / gy));
+    return s;
 }
 
 // A leaf's weight in the survivors' move: its fade squared. A leaf half faded covers the
@@ -71,17 +105,15 @@ float spread_weight(float fade) { return fade * fade; }
 
 // The survivors' move, bin by bin: sums in double and in index order, so no thread count or
 // order can change a bit of it.
-void radial_spread(const LeafParticles& L, const std::vector<float>& fade, const glm::vec3& center,
+void radial_spread(const LeafBasis& B, const std::vector<float>& fade, const glm::vec3& center,
                    float max_growth, TreeLod& t) {
     constexpr int kBins = kElevationBins * kAzimuthBins;
     std::vector<double> all_w(kBins, 0.0), all_r2(kBins, 0.0), kept_w(kBins, 0.0),
         kept_r2(kBins, 0.0), extent(kBins, 0.0);
-    for (size_t j = 0; j < L.size(); ++j) {
-        const glm::vec3 v = L.position[j] - center;
-        const float r = glm::length(v);
+    for (size_t j = 0; j < B.size(); ++j) {
+        const float r = B.r[j];
         if (!(r > 0)) continue;
-        float e, a;
-        direction_bins(v, r, e, a);
+        const float e = B.e[j], a = B.a[j];
         const int be = std::clamp(static_cast<int>(std::lround(e)), 0, kElevationBins - 1);
         const int ba = (static_cast<int>(std::lround(a)) + kAzimuthBins) % kAzimuthBins;
         const int bin = be * kAzimuthBins + ba;
@@ -118,26 +150,25 @@ void radial_spread(const LeafParticles& L, const std::vector<float>& fade, const
     // by bisection, brings the survivors' RMS distance to the whole crown's.
     const std::vector<glm::vec2> base = t.radial;
     const double target = ar / aw;
-    // The survivors' distances, bin coordinates and fades, once: the search only moves them.
+    // The survivors' distances, fades and where they read the bins, once: the search only
+    // changes the bins' exponents.
     struct Survivor {
-        float r, e, a, alpha;
+        float r, alpha;
+        SpreadAt at;
     };
     std::vector<Survivor> kept;
-    for (size_t j = 0; j < L.size(); ++j) {
+    for (size_t j = 0; j < B.size(); ++j) {
         const float alpha = spread_weight(fade[j]);
-        const glm::vec3 v = L.position[j] - center;
-        const float r = glm::length(v);
+        const float r = B.r[j];
         if (!(alpha > 0) || !(r > 0)) continue;
-        Survivor s{r, 0, 0, alpha};
-        direction_bins(v, r, s.e, s.a);
-        kept.push_back(s);
+        kept.push_back({r, alpha, spread_at(t, r, B.e[j], B.a[j])});
     }
     auto rms_with = [&](double k) {
         for (size_t i = 0; i < base.size(); ++i)
             t.radial[i].x = static_cast<float>(std::max(0.05, 1.0 - (1.0 - base[i].x) * k));
         double moved = 0;
         for (const Survivor& s : kept) {
-            const double m = s.r * spread_factor(t, s.r, s.e, s.a);
+            const double m = s.r * s.at.factor(t);
             moved += s.alpha * m * m;
         }
         return moved / kw;
@@ -166,21 +197,13 @@ glm::vec3 spread_leaf(const TreeLod& t, const glm::vec3& p) {
     return t.center + v * spread_factor(t, r, e, a);
 }
 
+glm::vec3 spread_leaf(const TreeLod& t, const glm::vec3& p, float r, float e, float a) {
+    if (t.radial.empty() || !(r > 0)) return p;
+    return t.center + (p - t.center) * spread_factor(t, r, e, a);
+}
+
 float spread_factor(const TreeLod& t, float r, float e, float a) {
-    e = std::clamp(e, 0.0f, kElevationBins - 1.0f);
-    const int e0 = std::min(static_cast<int>(e), kElevationBins - 2);
-    const float fe = e - e0;
-    const float af = std::floor(a);
-    const float fa = a - af;
-    const int a0 = (static_cast<int>(af) + kAzimuthBins) % kAzimuthBins;
-    const int a1 = (a0 + 1) % kAzimuthBins;
-    auto at = [&](int ei, int ai) { return t.radial[static_cast<size_t>(ei * kAzimuthBins + ai)]; };
-    const glm::vec2 g = (at(e0, a0) * (1 - fa) + at(e0, a1) * fa) * (1 - fe) +
-                        (at(e0 + 1, a0) * (1 - fa) + at(e0 + 1, a1) * fa) * fe;
-    // r -> R (r / R)^gamma inside the bins' extent R: survivors move out, the silhouette does
-    // not. Near the centre the move is bounded by max_spread.
-    if (!(r < g.y) || !(g.x < 1.0f)) return 1.0f;
-    return std::min(t.max_spread, pmath::pow(r / g.y, g.x - 1.0f));
+    return spread_at(t, r, e, a).factor(t);
 }
 
 ParticleLod particle_lod(const Shot& shot, const FrameLod& lod, size_t item, SpriteKind kind,
@@ -235,7 +258,12 @@ ParticleLod particle_lod(const Shot& shot, const FrameLod& lod, size_t item, Spr
         if (t.leaf > 0) {
             out.scale = t.growth;
             out.growth = t.growth;
-            out.world = shot.placements[item].place(spread_leaf(t, L.position[j]));
+            const glm::vec3 spread =
+                shot.leaf_basis.empty()
+                    ? spread_leaf(t, L.position[j])
+                    : spread_leaf(t, L.position[j], shot.leaf_basis[item]->r[j],
+                                  shot.leaf_basis[item]->e[j], shot.leaf_basis[item]->a[j]);
+            out.world = shot.placements[item].place(spread);
             out.moved = true;
         }
     }
@@ -303,22 +331,18 @@ void replay_tree(const Shot& shot, size_t i, const std::vector<FrameView>& path,
 
 // The leaves' detail at the tree's distance value t.leaf (> 0): how much the interior
 // darkening weakens, how much survivors grow and where they spread to.
-void leaf_detail(const Shot& shot, const BuiltTree& b, const RenderSettings& rs, float max_growth,
+void leaf_detail(const BuiltTree& b, const LeafBasis& B, const RenderSettings& rs, float max_growth,
                  TreeLod& t) {
     const LeafParticles& L = b.tree().leaves;
     // Interior darkening stands for shade cast by outer leaves (IV.4.1); as they fade it
     // weakens (IV.6), by as much as keeps the survivors' mean lightness the whole tree's.
     // A leaf's lightness is linear in the weakening w: l0 + (l1 - l0) w, at a typical N.L.
-    const StrokeShaderParams& shader = shot.scene.families[b.family].leaf_shader;
     double sum = 0, full = 0, k0 = 0, k1 = 0;
     std::vector<float> alpha(L.size());  // each leaf's fade, for the spread below too
     for (size_t j = 0; j < L.size(); ++j) {
         alpha[j] = leaf_fade(t.leaf, L.fade_begin[j], L.fade_end[j], rs.fade_gain);
         const double a = alpha[j];
-        const double l0 =
-            stroke_lightness(shader, 0.5f, L.center_distance[j], L.branch_distance[j], 0.0f);
-        const double l1 =
-            stroke_lightness(shader, 0.5f, L.center_distance[j], L.branch_distance[j], 1.0f);
+        const double l0 = B.light0[j], l1 = B.light1[j];
         sum += a, full += l0, k0 += a * l0, k1 += a * (l1 - l0);
     }
     if (sum > 0 && k1 > 1e-9 * sum)
@@ -331,7 +355,7 @@ void leaf_detail(const Shot& shot, const BuiltTree& b, const RenderSettings& rs,
     t.kept = static_cast<float>(sum / static_cast<double>(L.size()));
     const float floor = pmath::pow(max_growth, -1.0f / kGrowthPower);
     t.growth = std::min(max_growth, pmath::pow(std::max(t.kept, floor), -kGrowthPower));
-    radial_spread(L, alpha, b.tree().center, max_growth, t);
+    radial_spread(B, alpha, b.tree().center, max_growth, t);
 }
 
 }  // namespace
@@ -380,7 +404,12 @@ FrameLod level_of_detail(const Shot& shot, const FrameView& view, const RenderSe
     }
     tbb::parallel_for(size_t{0}, computed.size(), [&](size_t k) {
         const size_t i = computed[k];
-        leaf_detail(shot, trees[i], rs, max_growth, lod.trees[i]);
+        const BuiltTree& b = trees[i];
+        if (!shot.leaf_basis.empty())
+            return leaf_detail(b, *shot.leaf_basis[i], rs, max_growth, lod.trees[i]);
+        // A shot built with the level of detail off, painted with it on.
+        const LeafBasis B = leaf_basis(b.tree(), shot.scene.families[b.family].leaf_shader);
+        leaf_detail(b, B, rs, max_growth, lod.trees[i]);
     });
     for (size_t i = 0; i < trees.size(); ++i) {
         if (source[i] == i || source[i] == trees.size()) continue;

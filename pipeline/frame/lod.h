@@ -13,6 +13,7 @@
 #include "pipeline/input/camera.h"
 #include "pipeline/input/distance_circles.h"
 #include "pipeline/input/settings.h"
+#include "pipeline/shot/leaf_basis.h"
 #include "pipeline/shot/materials.h"
 #include "pipeline/shot/particle_clusters.h"
 
@@ -69,11 +70,12 @@ FrameLod level_of_detail(const Shot& shot, const FrameView& view, const RenderSe
 // Depth of a world point along the camera's view axis (the plane through the eye).
 double view_depth(const Camera& cam, const glm::dvec3& world);
 
-constexpr int kElevationBins = 6, kAzimuthBins = 12;
-
 // Where a surviving leaf at p (tree-local) is painted: moved along its direction from the
 // centre by the bins' ratios, interpolated bilinearly over directions so no leaf jumps.
 glm::vec3 spread_leaf(const TreeLod& t, const glm::vec3& p);
+// The same for a leaf whose distance r from t.center and direction bins (e, a) are known
+// (LeafBasis): the same bits, without the direction's arc sine and arc tangent.
+glm::vec3 spread_leaf(const TreeLod& t, const glm::vec3& p, float r, float e, float a);
 // The same as a factor on the distance r from the centre, in bin coordinates (e, a).
 float spread_factor(const TreeLod& t, float r, float e, float a);
 

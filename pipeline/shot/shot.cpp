@@ -10,8 +10,10 @@
 #include <glm/geometric.hpp>
 #include <limits>
 #include <map>
+#include <set>
 
 #include "pipeline/shot/cluster_build.h"
+#include "pipeline/shot/leaf_basis.h"
 #include "shading/pigment.h"
 #include "shading/portable_math.h"
 
@@ -208,6 +210,28 @@ bool can_carry(const Shot* from, const Shot& shot) {
     return true;
 }
 
+// Each tree's member's leaf basis, one per member (trees drawn from one member share it).
+std::vector<std::shared_ptr<const LeafBasis>> leaf_bases(const Shot& shot) {
+    const std::vector<BuiltTree>& trees = *shot.trees;
+    std::map<const Tree*, size_t> member;
+    std::vector<size_t> first;  // per member, its first tree
+    std::vector<size_t> of(trees.size());
+    for (size_t i = 0; i < trees.size(); ++i) {
+        auto [it, fresh] = member.emplace(&trees[i].tree(), first.size());
+        if (fresh) first.push_back(i);
+        of[i] = it->second;
+    }
+    std::vector<std::shared_ptr<const LeafBasis>> basis(first.size());
+    tbb::parallel_for(size_t{0}, first.size(), [&](size_t m) {
+        const BuiltTree& b = trees[first[m]];
+        basis[m] = std::make_shared<const LeafBasis>(
+            leaf_basis(b.tree(), shot.scene.families[b.family].leaf_shader));
+    });
+    std::vector<std::shared_ptr<const LeafBasis>> out(trees.size());
+    for (size_t i = 0; i < trees.size(); ++i) out[i] = basis[of[i]];
+    return out;
+}
+
 }  // namespace
 
 Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> trees,
@@ -338,6 +362,18 @@ Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> t
                                timer.ms(),
                                std::to_string(clusters) + " clusters of up to " +
                                    std::to_string(kClusterSize) + " particles"});
+    }
+    if (shot.scene.render.level_of_detail) {
+        PassTimer timer;
+        shot.leaf_basis = leaf_bases(shot);
+        size_t leaves = 0;
+        std::set<const LeafBasis*> counted;
+        for (const auto& b : shot.leaf_basis)
+            if (counted.insert(b.get()).second) leaves += b->size();
+        shot.passes.push_back({"leaf basis", true,
+                               "each member's leaves' lightness and direction from the crown's "
+                               "centre, which every frame's level of detail reads",
+                               timer.ms(), std::to_string(leaves) + " leaves"});
     }
     if (plan.sun_light) {
         PassTimer timer;

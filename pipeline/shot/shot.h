@@ -12,6 +12,7 @@
 #include "pipeline/shot/graftal_instances.h"
 #include "pipeline/shot/imposter_objects.h"
 #include "pipeline/shot/landscape.h"
+#include "pipeline/shot/leaf_basis.h"
 #include "pipeline/shot/materials.h"
 #include "pipeline/shot/particle_clusters.h"
 #include "pipeline/shot/particle_input.h"
@@ -95,6 +96,9 @@ struct Shot {
     // Per item, its particles grouped by place with the bounds a frame culls them by, a group
     // at a time (particle_clusters.h).
     std::vector<ItemClusters> clusters;
+    // Per tree, its member's leaves as the level of detail reads them (leaf_basis.h), shared by
+    // the trees of one member; empty when the scene turns the level of detail off.
+    std::vector<std::shared_ptr<const LeafBasis>> leaf_basis;
 
     // The graftal-styled families' crowns and materials' surfaces (graftal_stage.h); their
     // leaf and surface strokes are not painted. Graftal sprites' items count on from

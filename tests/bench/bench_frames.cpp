@@ -1,7 +1,8 @@
 // Frames that cost what they show (issue 26): the sprites stage of a forest-edge-walk frame
 // at 480x270 and 1920x1080, particle by particle against cluster by cluster, each ray cast
 // against answers kept from the frame before (SeenMemo), and with small strokes thinned
-// (render/thin_below_px); and whole frames at both sizes. Measured in the same run; figures
+// (render/thin_below_px); the level of detail with and without the shot's leaf basis; and
+// whole frames at both sizes. Measured in the same run; figures
 // in BENCHMARKS.md, "Frames that cost what they show".
 #include <benchmark/benchmark.h>
 
@@ -91,6 +92,33 @@ BENCHMARK(BM_Sprites)
     ->Args({480, 1, 1, 6})
     ->Args({1920, 0, 0, 0})
     ->Args({1920, 1, 1, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// args: the shot keeps each member's leaf basis (as build_shot does) or not (each frame
+// computes it, as before the basis was kept): the level-of-detail stage of frame 24 at 480x270.
+void BM_LevelOfDetail(benchmark::State& state) {
+    static std::unique_ptr<Shot> without;
+    const Shot* shot = &walk(480);
+    if (!state.range(0)) {
+        if (!without) {
+            SceneDesc scene = shot->scene;
+            without = std::make_unique<Shot>(build_shot(std::move(scene)));
+            without->leaf_basis.clear();
+        }
+        shot = without.get();
+    }
+    const FrameSettings fs = scene_frame_settings(shot->scene);
+    const FrameView view = view_at(shot->scene, frame_time(kFrame, shot->scene.fps));
+    for (auto _ : state) {
+        const FrameLod lod = level_of_detail(*shot, view, fs.render);
+        benchmark::DoNotOptimize(lod.trees.data());
+    }
+}
+BENCHMARK(BM_LevelOfDetail)
+    ->ArgNames({"basis_kept"})
+    ->Arg(0)
+    ->Arg(1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <glm/geometric.hpp>
 #include <unordered_map>
@@ -230,6 +231,55 @@ TEST(LevelOfDetail, FarSurvivorsArePaintedGrownByTheirTreesGrowth) {
     std::sort(ratios.begin(), ratios.end());
     EXPECT_NEAR(ratios[ratios.size() / 2], growth, 0.1 * growth)
         << "the median survivor's linear size against its ungrown stroke";
+}
+
+// The shot keeps what no frame changes of each member's leaves (LeafBasis); a frame that
+// computes it itself (a shot built with the level of detail off) gets the same bits, for the
+// tree's record, every leaf's spread place and the frame's sprites.
+TEST(LevelOfDetail, LeafBasisKeptInTheShotGivesTheSameBits) {
+    Shot shot = build_shot(oak_scene(70));
+    ASSERT_EQ(shot.leaf_basis.size(), shot.trees->size());
+    const FrameView view = still_view(shot.scene);
+    const FrameSettings fs = scene_frame_settings(shot.scene);
+    const FramePlan plan = plan_frame(shot, fs);
+    const FrameLod kept = level_of_detail(shot, view, fs.render);
+    const SpriteSet kept_sprites =
+        make_sprites({shot, view, plan, fs.render, kept, shot.sun_rays.get()});
+    shot.leaf_basis.clear();
+    const FrameLod own = level_of_detail(shot, view, fs.render);
+    const SpriteSet own_sprites =
+        make_sprites({shot, view, plan, fs.render, own, shot.sun_rays.get()});
+    const TreeLod &a = kept.trees.at(0), &b = own.trees.at(0);
+    ASSERT_GT(a.leaf, 0.3f) << "far enough for leaves to fade and survivors to spread";
+    ASSERT_FALSE(a.radial.empty());
+    EXPECT_EQ(0, std::memcmp(&a, &b, offsetof(TreeLod, center) + sizeof a.center));
+    ASSERT_EQ(a.radial.size(), b.radial.size());
+    EXPECT_EQ(0,
+              std::memcmp(a.radial.data(), b.radial.data(), a.radial.size() * sizeof a.radial[0]));
+    const Tree& tree = (*shot.trees)[0].tree();
+    const LeafBasis basis = leaf_basis(tree, shot.scene.families[0].leaf_shader);
+    size_t moved = 0;
+    for (size_t j = 0; j < tree.leaves.size(); ++j) {
+        const glm::vec3 p = tree.leaves.position[j];
+        const glm::vec3 x = spread_leaf(a, p),
+                        y = spread_leaf(a, p, basis.r[j], basis.e[j], basis.a[j]);
+        ASSERT_EQ(0, std::memcmp(&x, &y, sizeof x)) << "leaf " << j;
+        moved += x != p;
+    }
+    EXPECT_GT(moved, tree.leaves.size() / 2);
+    ASSERT_EQ(kept_sprites.sprites.size(), own_sprites.sprites.size());
+    ASSERT_GT(kept_sprites.sprites.size(), 100u);
+    for (size_t k = 0; k < kept_sprites.sprites.size(); ++k) {
+        const Sprite &p = kept_sprites.sprites[k], &q = own_sprites.sprites[k];
+        ASSERT_EQ(sprite_key(p), sprite_key(q)) << k;
+        ASSERT_EQ(p.x, q.x) << k;
+        ASSERT_EQ(p.y, q.y) << k;
+        ASSERT_EQ(p.depth, q.depth) << k;
+        ASSERT_EQ(p.half_w, q.half_w) << k;
+        ASSERT_EQ(p.half_l, q.half_l) << k;
+        ASSERT_EQ(p.fade, q.fade) << k;
+        ASSERT_EQ(p.k.lightness, q.k.lightness) << k;
+    }
 }
 
 TEST(LevelOfDetail, OffWithoutCirclesOrWhenTurnedOff) {
