@@ -149,6 +149,14 @@ void ShadeStrokeRow(const StrokeRow& row, int y, int x0, int count, float* alpha
     const float inv_n = 1.0f / static_cast<float>(n);
     const float max_op = clamp01(row.max_opacity);
     const bool step = !(row.feather_max > row.feather_min);
+    // Whether a sample in the profile's first or last table cell can show at all. There the
+    // profile is at most its value at the cell's inner end (sin^k rises from the border), so
+    // when that is below feather_min (with a margin for the functions' last bits) no sample in
+    // those cells shows whatever its exact profile, and the table's value serves: edge_profile's
+    // exact evaluation (a sine and a power per lane) is only needed where it could change what
+    // shows.
+    const bool border_shows = std::max(row.edge->v[1], row.edge->v[EdgeTable::kSize - 1]) >=
+                              row.feather_min * (1.0f - 1e-4f);
     const float* table = row.edge->v.data();
     constexpr int kSize = EdgeTable::kSize;
     HWY_ALIGN float lanes_f[kMaxLanes];
@@ -172,7 +180,7 @@ void ShadeStrokeRow(const StrokeRow& row, int y, int x0, int count, float* alpha
         V f = hn::Sub(x, hn::ConvertTo(d, ic));
         V p = hn::Add(v0, hn::Mul(f, hn::Sub(v1, v0)));
         auto fix = hn::And(hn::RebindMask(d, border), inside);
-        if (!hn::AllFalse(d, fix)) {
+        if (border_shows && !hn::AllFalse(d, fix)) {
             hn::Store(p, d, prof);
             hn::Store(u, d, ubuf);
             hn::Store(hn::VecFromMask(di, hn::RebindMask(di, fix)), di, bbuf);

@@ -71,15 +71,26 @@ struct StrokeShaderParams {
 // IV.4.1: N.L clamped, then outer leaves brightened and inner ones darkened through gains of
 // the stored distances. The darkening stands for self-shadowing by outer leaves that fade away
 // with distance (IV.6), so it weakens as lod_distance goes to 1.
-inline float stroke_lightness(const StrokeShaderParams& p, float n_dot_l, float center_distance,
-                              float branch_distance, float lod_distance) {
+// The outer term is the same under any light, so whoever lights one leaf many times (the sun's
+// shadow casters) keeps it: stroke_outer, then stroke_lightness_outer.
+inline float stroke_outer(const StrokeShaderParams& p, float center_distance,
+                          float branch_distance) {
+    return 0.5f * (gain(center_distance, p.center_gain) + gain(branch_distance, p.branch_gain));
+}
+
+inline float stroke_lightness_outer(const StrokeShaderParams& p, float n_dot_l, float outer,
+                                    float lod_distance) {
     float l = clamp01(n_dot_l);
-    float outer =
-        0.5f * (gain(center_distance, p.center_gain) + gain(branch_distance, p.branch_gain));
     l += (1.0f - l) * clamp01(p.outer_brighten) * outer * outer;
     float inner = 1.0f - outer;
     l *= 1.0f - clamp01(p.inner_darken) * inner * inner * (1.0f - clamp01(lod_distance));
     return clamp01(l);
+}
+
+inline float stroke_lightness(const StrokeShaderParams& p, float n_dot_l, float center_distance,
+                              float branch_distance, float lod_distance) {
+    return stroke_lightness_outer(p, n_dot_l, stroke_outer(p, center_distance, branch_distance),
+                                  lod_distance);
 }
 
 // IV.4.2: a shadow multiplier in 0..1 (1 = lit) remapped to 0.5..1 so shadows never go black,
@@ -233,11 +244,18 @@ struct StrokeConstants {
     // the palette's.
     Color own{0.0f};
     float own_amount = 0;
-    // What the stroke mirrors (still water, pipeline/frame/reflection.h), linear and premultiplied by
-    // its share: the palette's colour times mirror_keep, plus this. Black and 1: no mirror.
+    // What the stroke mirrors (still water, pipeline/frame/reflection.h), linear and premultiplied
+    // by its share: the palette's colour times mirror_keep, plus this. Black and 1: no mirror.
     Color mirror{0.0f};
     float mirror_keep = 1;
 };
+
+// Offsets far apart in label space, kept below 256 (the lattice period): every stroke's noise
+// differs.
+inline void stroke_noise_offsets(float label, float& offset_s, float& offset_t) {
+    offset_s = 211.37f * clamp01(label);
+    offset_t = 97.91f * clamp01(label) + 13.0f;
+}
 
 // The per-sprite part of the shader. `shadow` is 1 when lit (the still renderer has no shadow
 // rays yet), `d` the atmospheric distance value (distance_value), `tree_id` seeds the tint.
@@ -252,9 +270,7 @@ inline StrokeConstants stroke_constants(const StrokeShaderParams& p, float n_dot
     float f = stroke_frequency(p, center_distance, l);
     k.frequ_s = f * p.s_frequ_scale;
     k.frequ_t = f * p.t_frequ_scale;
-    // Offsets far apart in label space, kept below 256 (the lattice period).
-    k.offset_s = 211.37f * clamp01(label);
-    k.offset_t = 97.91f * clamp01(label) + 13.0f;
+    stroke_noise_offsets(label, k.offset_s, k.offset_t);
     k.sub_frequ = p.sub_stroke_frequ;
     k.sub_amt = p.sub_stroke_amt;
     if (use_tint) {
@@ -296,6 +312,19 @@ struct StrokeNoise {
 
 inline StrokeNoise noise_of(const StrokeConstants& k) {
     return {k.frequ_s, k.frequ_t, k.offset_s, k.offset_t};
+}
+
+// noise_of(stroke_constants(p, n_dot_l, ...)) of a lit stroke at full detail (shadow 1,
+// lod_distance 0), from its kept stroke_outer: the same bits, without the gains' powers.
+inline StrokeNoise lit_stroke_noise(const StrokeShaderParams& p, float n_dot_l, float outer,
+                                    float center_distance, float label) {
+    const float l = stroke_lightness_outer(p, n_dot_l, outer, 0.0f);
+    const float f = stroke_frequency(p, center_distance, l);
+    StrokeNoise n;
+    n.frequ_s = f * p.s_frequ_scale;
+    n.frequ_t = f * p.t_frequ_scale;
+    stroke_noise_offsets(label, n.offset_s, n.offset_t);
+    return n;
 }
 
 // Noise of the stroke mask at sprite coordinates (s, t).

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 #include <stdexcept>
@@ -64,6 +65,9 @@ struct ShadowContext {
     uint64_t seen[kSeen];
     int n_seen = 0;
     int overflow = 0;
+    // The sun's card frame (sun_card_frame) for the last direction a member's filter saw: one
+    // per instance's space, not one per card the ray passes.
+    glm::vec3 frame_dir{0.0f}, sun{0.0f}, a0{0.0f}, b0{0.0f};
 };
 
 constexpr uint64_t kOpaqueDepth = 10 * 65536;  // 2^-10: a thousandth of the light
@@ -94,29 +98,51 @@ float caster_opacity(const CasterSet& set, uint32_t prim, const glm::vec3& org,
     return card_opacity(*set.shader, *set.edge, s, tt, [&] { return c.noise; });
 }
 
-// Opacity of a member's card j where a ray (in the member's space, running towards the sun)
-// crosses it: the card leaf_casters places in the world, built here from the ray's direction.
-float member_opacity(const MemberCasters& m, uint32_t j, const glm::vec3& org,
-                     const glm::vec3& dir) {
-    const float len = glm::length(dir);
-    if (!(len > 0.0f)) return 0.0f;
-    const glm::vec3 sun = dir / len;
+// What a member's card keeps of its leaf for the filter: the same values member_opacity would
+// compute from the label at every hit (two hashes, a cosine, a sine and two powers).
+struct CardConstants {
+    float cos_a = 1, sin_a = 0;  // its stroke's angle jitter
+    float half_w = 0, half_l = 0;
+    float outer = 0;  // stroke_outer: its lightness term that no light changes
+};
+
+CardConstants card_constants(const MemberCasters& m, size_t j) {
     const StrokeShaderParams& p = *m.shader;
-    glm::vec3 a0, b0, axis_s, axis_t;
-    sun_card_frame(sun, a0, b0);
     const float label = m.label[j];
-    sun_card_axes(p, label, a0, b0, axis_s, axis_t);
-    const float half_w = 0.5f * m.stroke_width * stroke_size_jitter(p, label);
-    const float half_l = half_w * p.stroke_aspect;
+    const double ang = stroke_angle_jitter(p, label);
+    CardConstants c;
+    c.cos_a = static_cast<float>(pmath::cos(ang)), c.sin_a = static_cast<float>(pmath::sin(ang));
+    c.half_w = 0.5f * m.stroke_width * stroke_size_jitter(p, label);
+    c.half_l = c.half_w * p.stroke_aspect;
+    c.outer = stroke_outer(p, m.center_distance[j], m.branch_distance[j]);
+    return c;
+}
+
+// Opacity of a member's card j where a ray (in the member's space, running towards the sun
+// `sc->sun`, its frame set) crosses it: the card leaf_casters places in the world, built here
+// from the ray's direction as sun_card_axes turns it.
+float member_opacity(const MemberCasters& m, const CardConstants& c, uint32_t j,
+                     const ShadowContext& sc, const glm::vec3& org) {
+    const StrokeShaderParams& p = *m.shader;
+    const glm::vec3 axis_s = c.cos_a * sc.a0 + c.sin_a * sc.b0;
+    const glm::vec3 axis_t = -c.sin_a * sc.a0 + c.cos_a * sc.b0;
     const glm::vec3& center = m.position[j];
-    const glm::vec3 rel = org + sun * glm::dot(center - org, sun) - center;
-    const float s = 0.5f + 0.5f * glm::dot(rel, axis_s) / half_w;
-    const float tt = 0.5f + 0.5f * glm::dot(rel, axis_t) / half_l;
+    const glm::vec3 rel = org + sc.sun * glm::dot(center - org, sc.sun) - center;
+    const float s = 0.5f + 0.5f * glm::dot(rel, axis_s) / c.half_w;
+    const float tt = 0.5f + 0.5f * glm::dot(rel, axis_t) / c.half_l;
     return card_opacity(p, *m.edge, s, tt, [&] {
-        return noise_of(stroke_constants(p, glm::dot(m.normal[j], sun), m.center_distance[j],
-                                         m.branch_distance[j], label, 0, 1.0f, 0.0f, 0.0f, false,
-                                         false));
+        return lit_stroke_noise(p, glm::dot(m.normal[j], sc.sun), c.outer, m.center_distance[j],
+                                m.label[j]);
     });
+}
+
+// Sets the context's sun and its card frame for a ray of direction `dir` (nonzero).
+void set_sun_frame(ShadowContext* sc, const glm::vec3& dir) {
+    // Bit for bit (a -0 is not a +0 here), so the frame is the one the direction gives.
+    if (std::memcmp(&dir, &sc->frame_dir, sizeof dir) == 0) return;
+    sc->frame_dir = dir;
+    sc->sun = dir / glm::length(dir);
+    sun_card_frame(sc->sun, sc->a0, sc->b0);
 }
 
 // Whether the ray has met card `key` before (then it is not counted again).
@@ -173,6 +199,7 @@ void caster_filter(const RTCFilterFunctionNArguments* args) {
 struct MemberPrimitives {
     MemberCasters casters;
     std::vector<float> radius;  // the card's half diagonal, a hair wider
+    std::vector<CardConstants> cards;
 };
 
 void member_bounds(const RTCBoundsFunctionArguments* args) {
@@ -206,7 +233,8 @@ void member_occluded(const RTCOccludedFunctionNArguments* args) {
               t <= RTCRayN_tfar(args->ray, args->N, i)))
             continue;
         if (seen_before(sc, inst << 32 | prim)) continue;
-        if (absorb(sc, member_opacity(m->casters, prim, org, dir)))
+        set_sun_frame(sc, dir);
+        if (absorb(sc, member_opacity(m->casters, m->cards[prim], prim, *sc, org)))
             RTCRayN_tfar(args->ray, args->N, i) = -std::numeric_limits<float>::infinity();
     }
 }
@@ -309,10 +337,13 @@ uint32_t RayMeshes::add_casters(const MemberCasters& m) {
         const StrokeShaderParams& p = *m.shader;
         const float diagonal = std::sqrt(1.0f + p.stroke_aspect * p.stroke_aspect);
         data->radius.resize(m.count);
+        data->cards.resize(m.count);
         // A hair wider than the card, so float rounding at its corners loses nothing.
-        for (size_t j = 0; j < m.count; ++j)
+        for (size_t j = 0; j < m.count; ++j) {
             data->radius[j] =
                 1.001f * 0.5f * m.stroke_width * stroke_size_jitter(p, m.label[j]) * diagonal;
+            data->cards[j] = card_constants(m, j);
+        }
         rtcSetGeometryUserPrimitiveCount(g, static_cast<unsigned>(m.count));
         rtcSetGeometryUserData(g, data.get());
         rtcSetGeometryBoundsFunction(g, member_bounds, nullptr);

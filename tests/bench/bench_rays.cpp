@@ -2,7 +2,8 @@
 // plus its leaf strokes as cards whose opacity is the stroke mask (the occlusion filter), and
 // against the same cards as plain opaque quads (no filter), in rays per second on one core,
 // measured in the same run; with Embree pinned to SSE2 (pleinair's default: the same hits on
-// every x86-64 CPU) and left to pick its widest instruction set. Figures: BENCHMARKS.md.
+// every x86-64 CPU) and left to pick its widest instruction set. And the shot's own sun scene,
+// where each tree's cards are its member's, placed by instances. Figures: BENCHMARKS.md.
 #include <benchmark/benchmark.h>
 #include <tbb/task_arena.h>
 
@@ -106,8 +107,43 @@ void shadow_rays(benchmark::State& state, bool filter, const char* device_config
     state.counters["rays"] = static_cast<double>(f.origins.size());
 }
 
+// As the painter traces a particle's light (sun_light_at through the shot's sun scene): each
+// tree's leaf cards are one member's Embree user geometry placed by instances, the card built
+// from the ray's direction in the filter. Every leaf of forest-edge, pleinair's own device.
+void member_rays(benchmark::State& state) {
+    static const Shot shot = [] {
+        set_ray_device_config(kPortableRayDevice);
+        return build_shot(load_scene(resolve_preset("scenes", "forest-edge", "bench")));
+    }();
+    static const std::vector<RayOrigin> origins = [] {
+        std::vector<RayOrigin> o;
+        for (size_t i = 0; i < shot.trees->size(); ++i)
+            for_each_particle(shot, i, [&](SpriteKind kind, size_t, const RayOrigin& r) {
+                if (kind == SpriteKind::kLeaf) o.push_back(r);
+            });
+        return o;
+    }();
+    const glm::vec3 sun(shot.scene.sun_direction);
+    tbb::task_arena one(1);
+    uint64_t rays = 0;
+    double light = 0;
+    for (auto _ : state) {
+        one.execute([&] {
+            FlushDenormals ftz;
+            for (const RayOrigin& o : origins)
+                light += sun_light_at(*shot.sun_rays, o, sun, ShadowMode::kTransmissive);
+        });
+        rays += origins.size();
+    }
+    state.counters["rays_per_s"] =
+        benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
+    state.counters["mean_light"] = light / static_cast<double>(rays);
+    state.counters["rays"] = static_cast<double>(origins.size());
+}
+
 }  // namespace
 
+BENCHMARK(member_rays)->Name("shadow_rays/MemberCasters")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(shadow_rays, StrokeFilter / sse2, true, "isa=sse2")
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(shadow_rays, StrokeFilter / avx2, true, "isa=avx2")
