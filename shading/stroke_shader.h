@@ -250,11 +250,24 @@ struct StrokeConstants {
     float mirror_keep = 1;
 };
 
-// Offsets far apart in label space, kept below 256 (the lattice period): every stroke's noise
-// differs.
-inline void stroke_noise_offsets(float label, float& offset_s, float& offset_t) {
-    offset_s = 211.37f * clamp01(label);
-    offset_t = 97.91f * clamp01(label) + 13.0f;
+// What the stroke mask's noise reads of StrokeConstants, for whoever keeps many strokes around
+// (shadow casters) and needs no colour.
+struct StrokeNoise {
+    float frequ_s = 1, frequ_t = 1;
+    float offset_s = 0, offset_t = 0;
+};
+
+// A stroke's noise at its lightness: IV.4.4's frequency, and offsets far apart in label space,
+// kept below 256 (the lattice period), so every stroke's noise differs.
+inline StrokeNoise stroke_noise_for(const StrokeShaderParams& p, float lightness,
+                                    float center_distance, float label) {
+    const float f = stroke_frequency(p, center_distance, lightness);
+    StrokeNoise n;
+    n.frequ_s = f * p.s_frequ_scale;
+    n.frequ_t = f * p.t_frequ_scale;
+    n.offset_s = 211.37f * clamp01(label);
+    n.offset_t = 97.91f * clamp01(label) + 13.0f;
+    return n;
 }
 
 // The per-sprite part of the shader. `shadow` is 1 when lit (the still renderer has no shadow
@@ -267,10 +280,9 @@ inline StrokeConstants stroke_constants(const StrokeShaderParams& p, float n_dot
     float l = stroke_lightness(p, n_dot_l, center_distance, branch_distance, lod_distance);
     if (shadow < 1.0f) l *= shadow_remap(shadow, p.shadow_bias);
     k.lightness = l;
-    float f = stroke_frequency(p, center_distance, l);
-    k.frequ_s = f * p.s_frequ_scale;
-    k.frequ_t = f * p.t_frequ_scale;
-    stroke_noise_offsets(label, k.offset_s, k.offset_t);
+    const StrokeNoise n = stroke_noise_for(p, l, center_distance, label);
+    k.frequ_s = n.frequ_s, k.frequ_t = n.frequ_t;
+    k.offset_s = n.offset_s, k.offset_t = n.offset_t;
     k.sub_frequ = p.sub_stroke_frequ;
     k.sub_amt = p.sub_stroke_amt;
     if (use_tint) {
@@ -303,13 +315,6 @@ inline float stroke_filter_width(const StrokeConstants& k, float half_w_px, floa
     return std::min(0.3f * g / static_cast<float>(std::max(samples_per_axis, 1)), 0.5f);
 }
 
-// What the stroke mask's noise reads of StrokeConstants, for whoever keeps many strokes around
-// (shadow casters) and needs no colour.
-struct StrokeNoise {
-    float frequ_s = 1, frequ_t = 1;
-    float offset_s = 0, offset_t = 0;
-};
-
 inline StrokeNoise noise_of(const StrokeConstants& k) {
     return {k.frequ_s, k.frequ_t, k.offset_s, k.offset_t};
 }
@@ -318,13 +323,8 @@ inline StrokeNoise noise_of(const StrokeConstants& k) {
 // lod_distance 0), from its kept stroke_outer: the same bits, without the gains' powers.
 inline StrokeNoise lit_stroke_noise(const StrokeShaderParams& p, float n_dot_l, float outer,
                                     float center_distance, float label) {
-    const float l = stroke_lightness_outer(p, n_dot_l, outer, 0.0f);
-    const float f = stroke_frequency(p, center_distance, l);
-    StrokeNoise n;
-    n.frequ_s = f * p.s_frequ_scale;
-    n.frequ_t = f * p.t_frequ_scale;
-    stroke_noise_offsets(label, n.offset_s, n.offset_t);
-    return n;
+    return stroke_noise_for(p, stroke_lightness_outer(p, n_dot_l, outer, 0.0f), center_distance,
+                            label);
 }
 
 // Noise of the stroke mask at sprite coordinates (s, t).

@@ -258,11 +258,9 @@ ParticleLod particle_lod(const Shot& shot, const FrameLod& lod, size_t item, Spr
         if (t.leaf > 0) {
             out.scale = t.growth;
             out.growth = t.growth;
-            const glm::vec3 spread =
-                shot.leaf_basis.empty()
-                    ? spread_leaf(t, L.position[j])
-                    : spread_leaf(t, L.position[j], shot.leaf_basis[item]->r[j],
-                                  shot.leaf_basis[item]->e[j], shot.leaf_basis[item]->a[j]);
+            const LeafBasis* B = shot.leaf_basis.empty() ? nullptr : shot.leaf_basis[item].get();
+            const glm::vec3 spread = B ? spread_leaf(t, L.position[j], B->r[j], B->e[j], B->a[j])
+                                       : spread_leaf(t, L.position[j]);
             out.world = shot.placements[item].place(spread);
             out.moved = true;
         }

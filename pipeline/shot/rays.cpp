@@ -124,8 +124,8 @@ CardConstants card_constants(const MemberCasters& m, size_t j) {
 float member_opacity(const MemberCasters& m, const CardConstants& c, uint32_t j,
                      const ShadowContext& sc, const glm::vec3& org) {
     const StrokeShaderParams& p = *m.shader;
-    const glm::vec3 axis_s = c.cos_a * sc.a0 + c.sin_a * sc.b0;
-    const glm::vec3 axis_t = -c.sin_a * sc.a0 + c.cos_a * sc.b0;
+    glm::vec3 axis_s, axis_t;
+    sun_card_turn(c.cos_a, c.sin_a, sc.a0, sc.b0, axis_s, axis_t);
     const glm::vec3& center = m.position[j];
     const glm::vec3 rel = org + sc.sun * glm::dot(center - org, sc.sun) - center;
     const float s = 0.5f + 0.5f * glm::dot(rel, axis_s) / c.half_w;

@@ -83,12 +83,17 @@ inline void sun_card_frame(const glm::vec3& sun, glm::vec3& a0, glm::vec3& b0) {
 
 // The axes of a caster card in that frame, turned in its plane by its stroke's angle jitter
 // (leaf and imported strokes' cards in the world, a member's in the sun scene's filter).
+// The same from the angle's cosine and sine (kept per card by whoever turns many).
+inline void sun_card_turn(float ca, float sa, const glm::vec3& a0, const glm::vec3& b0,
+                          glm::vec3& axis_s, glm::vec3& axis_t) {
+    axis_s = ca * a0 + sa * b0;
+    axis_t = -sa * a0 + ca * b0;
+}
 inline void sun_card_axes(const StrokeShaderParams& p, float label, const glm::vec3& a0,
                           const glm::vec3& b0, glm::vec3& axis_s, glm::vec3& axis_t) {
     const double ang = stroke_angle_jitter(p, label);
-    const float ca = static_cast<float>(pmath::cos(ang)), sa = static_cast<float>(pmath::sin(ang));
-    axis_s = ca * a0 + sa * b0;
-    axis_t = -sa * a0 + ca * b0;
+    sun_card_turn(static_cast<float>(pmath::cos(ang)), static_cast<float>(pmath::sin(ang)), a0, b0,
+                  axis_s, axis_t);
 }
 
 // A grown tree's leaf strokes as shadow casters in its own space (IV.4.2), for the sun's scenes
