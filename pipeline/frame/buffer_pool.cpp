@@ -3,7 +3,12 @@
 
 #include <algorithm>
 
+#include "pipeline/frame/sprite.h"
+
 namespace pleinair {
+
+BufferPool::BufferPool() = default;
+BufferPool::~BufferPool() = default;
 
 std::vector<float> BufferPool::take(size_t n, float value) {
     std::vector<float> v;
@@ -32,6 +37,36 @@ void BufferPool::give(std::vector<float>&& v) {
             [](const auto& a, const auto& b) { return a.capacity() < b.capacity(); });
         kept_.erase(smallest);
     }
+}
+
+std::vector<Sprite> BufferPool::take_sprites() {
+    std::vector<Sprite> v;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        v.swap(sprites_);
+    }
+    v.clear();
+    return v;
+}
+
+void BufferPool::give_sprites(std::vector<Sprite>&& v) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (v.capacity() > sprites_.capacity()) sprites_ = std::move(v);
+}
+
+std::vector<std::vector<Sprite>> BufferPool::take_sprite_parts() {
+    std::vector<std::vector<Sprite>> parts;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        parts.swap(parts_);
+    }
+    for (std::vector<Sprite>& p : parts) p.clear();
+    return parts;
+}
+
+void BufferPool::give_sprite_parts(std::vector<std::vector<Sprite>>&& parts) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    parts_ = std::move(parts);
 }
 
 std::vector<float> pooled(BufferPool* pool, size_t n, float value) {

@@ -93,10 +93,10 @@ struct TileLayer {
     // linear unit is under a third of an 8-bit sRGB level even in the darkest paint.
     float cutoff = 0;
     int saturated = 0;  // pixels whose transmittance fell to the cutoff
-    std::array<float, 3 * kTile * kTile> color{};
-    std::array<float, kTile * kTile> through;        // through every stroke taken, held or not
-    std::array<float, 4 * kTile * kTile> pigment{};  // pigment mixing: concentrations gathered
-    std::array<uint32_t, kTile * kTile> front;       // sprite index of the AOVs, or kNone
+    std::array<float, 3 * kTile * kTile> color;
+    std::array<float, kTile * kTile> through;      // through every stroke taken, held or not
+    std::array<float, 4 * kTile * kTile> pigment;  // pigment mixing: concentrations gathered
+    std::array<uint32_t, kTile * kTile> front;     // sprite index of the AOVs, or kNone
     // The coherence bench's trace: the two nearest strokes over 5% opaque (filled when traced),
     // and the weight of the first's being in front of the second (1 in plain order).
     std::array<uint32_t, kTile * kTile> first, second;
@@ -125,14 +125,25 @@ struct TileLayer {
     std::array<uint8_t, kTile * kTile> held_count, blended;
     Held* held = nullptr;  // kHeld per pixel, the thread's (soft tiles only)
 
-    TileLayer(int px0, int py0, int px1, int py1, float cutoff)
-        : x0(px0), y0(py0), w(px1 - px0), h(py1 - py0), cutoff(cutoff) {
+    // Ready for the tile [px0, px1) x [py0, py1): the arrays a frame reads set, those it does
+    // not (pigments, AOVs, the trace; the soft order's, set by make_soft) left as they were. A
+    // layer is a quarter megabyte, reused tile after tile by its thread.
+    void reset(int px0, int py0, int px1, int py1, float cut, const FramePlan& plan,
+               bool pigments) {
+        x0 = px0, y0 = py0, w = px1 - px0, h = py1 - py0, cutoff = cut;
+        saturated = 0, range = 0;
+        soft = solo = false, window = speed_max = 0, held = nullptr;
+        open_until_all = -kInf;
+        color.fill(0.0f);
         through.fill(1.0f);
         open_until.fill(kInf);
-        front.fill(kNone);
-        first.fill(kNone);
-        second.fill(kNone);
-        first_weight.fill(1.0f);
+        if (pigments) pigment.fill(0.0f);
+        if (plan.aovs) front.fill(kNone);
+        if (plan.trace) {
+            first.fill(kNone);
+            second.fill(kNone);
+            first_weight.fill(1.0f);
+        }
     }
     // Pixels a layer in front already covers: closed before the first stroke.
     void close_covered(const StrokeLayer& front_layer) {
@@ -574,7 +585,10 @@ StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins
         }
         // Front to back (the bin's order reversed), until every pixel of the tile is covered:
         // the strokes behind would not show.
-        auto layer = std::make_unique<TileLayer>(px0, py0, px1, py1, rs.coverage_cutoff);
+        thread_local std::unique_ptr<TileLayer> kept;
+        if (!kept) kept = std::make_unique<TileLayer>();
+        TileLayer* layer = kept.get();
+        layer->reset(px0, py0, px1, py1, rs.coverage_cutoff, plan, pigments != nullptr);
         if (behind) layer->close_covered(*behind);
         float speed_max = 0;
         for (uint32_t idx : bin) speed_max = std::max(speed_max, set.sprites[idx].swap_speed);

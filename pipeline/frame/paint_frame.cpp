@@ -96,6 +96,7 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
     if (plan.trace) rep.trace = trace_of(sprites, strokes, sky ? &*sky : nullptr);
     give_back(strokes, settings.buffers);
     if (sky) give_back(sky->layer, settings.buffers);
+    if (settings.buffers) settings.buffers->give_sprites(std::move(sprites.sprites));
     return frame;
 }
 

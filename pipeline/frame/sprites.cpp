@@ -9,6 +9,7 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 
+#include "pipeline/frame/buffer_pool.h"
 #include "pipeline/frame/group_cull.h"
 #include "pipeline/frame/seen_memo.h"
 #include "pipeline/shot/particle_input.h"
@@ -433,6 +434,13 @@ SpriteSet make_sprites(const SpriteStageInput& input) {
                           input.view.eye_speed};
     const size_t items = shot.item_count();
     std::vector<SpriteSet> per_item(items);
+    // Each item's part in the memory it had the frame before (buffer_pool.h): the parts and
+    // the list they are joined into are tens of megabytes, and fresh pages cost more to touch
+    // than the whole join.
+    std::vector<std::vector<Sprite>> parts;
+    if (input.buffers) parts = input.buffers->take_sprite_parts();
+    parts.resize(items);
+    for (size_t i = 0; i < items; ++i) per_item[i].sprites = std::move(parts[i]);
     Counters counters;
     const bool by_cluster = input.group_culling && shot.clusters.size() == items;
     if (input.seen_memo && input.seen) input.seen_memo->begin_frame(shot, *input.seen, c.rs);
@@ -443,11 +451,15 @@ SpriteSet make_sprites(const SpriteStageInput& input) {
         by_cluster ? make.by_cluster() : make.each();
     });
     SpriteSet all;
-    // One allocation of the frame's size: a doubling series would touch fresh pages each frame.
+    if (input.buffers) all.sprites = input.buffers->take_sprites();
+    // One allocation of the frame's size (a doubling series would touch fresh pages), kept an
+    // eighth over so that the next frames' few more sprites fit it.
     size_t total = 0;
     for (const SpriteSet& s : per_item) total += s.sprites.size();
-    all.sprites.reserve(total);
-    for (SpriteSet& s : per_item) {
+    if (all.sprites.capacity() < total)
+        all.sprites.reserve(input.buffers ? total + total / 8 : total);
+    for (size_t i = 0; i < items; ++i) {
+        SpriteSet& s = per_item[i];
         for (Sprite& sp : s.sprites) {
             if (sp.grid >= 0) sp.grid += static_cast<int32_t>(all.grids.size());
             (sp.kind == SpriteKind::kLeaf   ? all.leaf
@@ -460,8 +472,10 @@ SpriteSet make_sprites(const SpriteStageInput& input) {
         all.faded += s.faded;
         all.thinned += s.thinned;
         all.grouped += s.grouped;
+        parts[i] = std::move(s.sprites);
         s = SpriteSet{};
     }
+    if (input.buffers) input.buffers->give_sprite_parts(std::move(parts));
     all.shadow_rays = counters.shadow_rays.combine(std::plus<uint64_t>());
     all.hidden = counters.hidden.combine(std::plus<uint64_t>());
     all.occlusion_rays = counters.occlusion_rays.combine(std::plus<uint64_t>());
@@ -474,6 +488,7 @@ SpriteSet sprites_stage(const FrameContext& ctx, const FrameLod& lod, const RayS
     const FramePlan& plan = ctx.plan;
     SpriteStageInput input{ctx.shot, ctx.view, plan, ctx.render(), lod, sun_rays, &seen};
     input.seen_memo = ctx.settings.seen_memo;
+    input.buffers = ctx.settings.buffers;
     SpriteSet sprites = make_sprites(input);
     FrameReport& rep = ctx.report;
     rep.leaf_sprites = sprites.leaf, rep.bark_sprites = sprites.bark;

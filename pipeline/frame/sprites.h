@@ -9,6 +9,7 @@
 #include "pipeline/frame/frame_context.h"
 #include "pipeline/frame/frame_plan.h"
 #include "pipeline/frame/lod.h"
+#include "pipeline/frame/sprite.h"
 #include "pipeline/frame/stroke_size.h"
 #include "pipeline/shot/graftal_draw.h"
 #include "pipeline/shot/materials.h"
@@ -25,33 +26,6 @@ class RayScene;
 constexpr int kShadowGrid = 4;
 using ShadowGrid = std::array<float, kShadowGrid * kShadowGrid>;
 float grid_at(const ShadowGrid& g, float s, float t);
-
-struct Sprite {
-    float x = 0, y = 0, depth = 0;
-    float range = 0;  // distance from the eye: what the depth order sorts by
-    // The most its range can change in one frame against that of a sprite overlapping it on
-    // screen: the eye's travel times the sprite's angular radius (0 for a still camera).
-    float swap_speed = 0;
-    float half_w = 0, half_l = 0;  // across and along the stroke, pixels
-    float ax = 0, ay = 1;          // unit screen direction of the stroke's length
-    // Fading with distance (IV.6, IV.7): 1 whole, 0 gone. A fade raises the stroke's noise
-    // threshold (composite.cpp), so it breaks into dabs and vanishes with crisp edges.
-    float fade = 1;
-    int32_t grid = -1;   // its shadow grid, with shadows per fragment
-    int32_t patch = -1;  // a graftal's patch in SpriteSet::patches
-    MaterialId material;
-    uint32_t object_id = 0;
-    SpriteKind kind = SpriteKind::kLeaf;
-    // Which particle: stable from frame to frame (the coherence bench follows it).
-    uint32_t item = 0, particle = 0;
-    StrokeConstants k;
-};
-
-// A particle's key, unique in its shot: item, kind (3 bits) and index.
-inline uint64_t particle_key(uint32_t item, SpriteKind kind, uint32_t particle) {
-    return (uint64_t{item} << 35) | (uint64_t(kind) << 32) | particle;
-}
-inline uint64_t sprite_key(const Sprite& sp) { return particle_key(sp.item, sp.kind, sp.particle); }
 
 // Boiling, for the coherence bench (FrameSettings::noise_reseed): every stroke's noise moves by
 // an amount the reseed picks. 0 leaves it.
@@ -90,6 +64,8 @@ struct SpriteStageInput {
     bool group_culling = true;
     // Occlusion answers kept from the frames before (seen_memo.h); null casts every ray.
     SeenMemo* seen_memo = nullptr;
+    // The sprite vectors' memory kept from the frame before (buffer_pool.h); null allocates it.
+    BufferPool* buffers = nullptr;
 };
 
 SpriteSet make_sprites(const SpriteStageInput& input);

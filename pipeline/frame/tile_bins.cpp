@@ -1,21 +1,42 @@
 // depth_order and bin_sprites.
 #include "pipeline/frame/tile_bins.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 
 namespace pleinair {
 
+namespace {
+
+// A float's bits as an unsigned key in the float's order (-0 just below +0), so that sorting
+// keys orders the floats.
+uint32_t ordered_bits(float f) {
+    uint32_t b;
+    std::memcpy(&b, &f, sizeof b);
+    return (b & 0x80000000u) ? ~b : b | 0x80000000u;
+}
+
+}  // namespace
+
 std::vector<uint32_t> depth_order(const std::vector<Sprite>& sprites) {
-    std::vector<uint32_t> order(sprites.size());
-    for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<uint32_t>(i);
-    tbb::parallel_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-        if (sprites[a].range != sprites[b].range) return sprites[a].range > sprites[b].range;
-        return a < b;
+    // One 64-bit key a sprite, farthest first and then by index: the comparator the order is
+    // defined by read two sprites' ranges at random places per comparison; the keys sort in
+    // place, a fifth of the time.
+    const size_t n = sprites.size();
+    std::vector<uint64_t> keys(n);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const auto& r) {
+        for (size_t i = r.begin(); i < r.end(); ++i)
+            keys[i] = (static_cast<uint64_t>(~ordered_bits(sprites[i].range)) << 32) | i;
     });
+    tbb::parallel_sort(keys.begin(), keys.end());
+    std::vector<uint32_t> order(n);
+    for (size_t i = 0; i < n; ++i) order[i] = static_cast<uint32_t>(keys[i]);
     return order;
 }
 
@@ -26,16 +47,27 @@ TileBins bin_sprites(const std::vector<Sprite>& sprites, const std::vector<uint3
     t.tiles_y = (height + kTile - 1) / kTile;
     t.bins.resize(static_cast<size_t>(t.tiles_x) * t.tiles_y);
     auto tile_of = [](float v, int tiles) {
-        return static_cast<int>(std::clamp(std::floor(v / kTile), 0.0f, tiles - 1.0f));
+        return static_cast<int16_t>(std::clamp(std::floor(v / kTile), 0.0f, tiles - 1.0f));
     };
+    // Each sprite's tiles first, in sprite order and in parallel: the walk in depth order
+    // below then reads 8 bytes a sprite instead of a whole sprite at a random place.
+    struct Tiles {
+        int16_t x0, x1, y0, y1;
+    };
+    std::vector<Tiles> tiles(sprites.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, sprites.size(), 4096), [&](const auto& r) {
+        for (size_t i = r.begin(); i < r.end(); ++i) {
+            const Sprite& sp = sprites[i];
+            float ex, ey;
+            sprite_extent(sp, ex, ey);
+            tiles[i] = {tile_of(sp.x - ex, t.tiles_x), tile_of(sp.x + ex, t.tiles_x),
+                        tile_of(sp.y - ey, t.tiles_y), tile_of(sp.y + ey, t.tiles_y)};
+        }
+    });
     for (uint32_t idx : order) {
-        const Sprite& sp = sprites[idx];
-        float ex, ey;
-        sprite_extent(sp, ex, ey);
-        const int x0 = tile_of(sp.x - ex, t.tiles_x), x1 = tile_of(sp.x + ex, t.tiles_x);
-        const int y0 = tile_of(sp.y - ey, t.tiles_y), y1 = tile_of(sp.y + ey, t.tiles_y);
-        for (int ty = y0; ty <= y1; ++ty)
-            for (int tx = x0; tx <= x1; ++tx)
+        const Tiles& k = tiles[idx];
+        for (int ty = k.y0; ty <= k.y1; ++ty)
+            for (int tx = k.x0; tx <= k.x1; ++tx)
                 t.bins[static_cast<size_t>(ty) * t.tiles_x + tx].push_back(idx);
     }
     return t;

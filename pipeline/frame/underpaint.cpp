@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <glm/geometric.hpp>
 
@@ -58,19 +59,24 @@ Color underpaint_color(const Shot& shot, const FrameView& view, const FramePlan&
 
 namespace {
 
-// Which cells some open pixel interpolates from (every cell when `all`).
+// Which cells some open pixel interpolates from (every cell when `all`). Rows in parallel:
+// neighbouring rows mark the same cells, with the same value, through atomic stores.
 std::vector<uint8_t> needed_cells(const Underpainting& u, const StrokeLayer& strokes, bool all) {
     std::vector<uint8_t> need(static_cast<size_t>(u.w) * u.h, all ? 1 : 0);
     if (all) return need;
-    for (int y = 0; y < strokes.height; ++y) {
+    tbb::parallel_for(0, strokes.height, [&](int y) {
         const float sy = u.cell_y(y);
         for (int x = 0; x < strokes.width; ++x) {
             if (strokes.covered(static_cast<size_t>(y) * strokes.width + x)) continue;
             const Underpainting::Lerp l = u.at(x, sy);
             for (int j : {l.j0, l.j1})
-                for (int i : {l.i0, l.i1}) need[u.cell(i, j)] = 1;
+                for (int i : {l.i0, l.i1}) {
+                    std::atomic_ref<uint8_t> cell(need[u.cell(i, j)]);
+                    if (!cell.load(std::memory_order_relaxed))
+                        cell.store(1, std::memory_order_relaxed);
+                }
         }
-    }
+    });
     return need;
 }
 

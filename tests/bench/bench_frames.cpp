@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 
+#include "pipeline/frame/buffer_pool.h"
 #include "pipeline/frame/paint_frame.h"
 #include "pipeline/frame/seen_memo.h"
 #include "pipeline/frame/sprites.h"
@@ -51,7 +52,8 @@ struct Walk {
     }
 };
 
-// args: image width, group culling, memo (the frame before painted first), thin_below_px.
+// args: image width, group culling, memo (the frame before painted first), thin_below_px, and
+// the sprite vectors' memory kept from the run before (buffer_pool.h, as animate keeps it).
 void BM_Sprites(benchmark::State& state) {
     const Walk w(static_cast<int>(state.range(0)), static_cast<int>(state.range(3)));
     const Shot& shot = w.shot;
@@ -62,36 +64,46 @@ void BM_Sprites(benchmark::State& state) {
     const FrameLod lod_before = level_of_detail(shot, before, fs.render);
     const SeenWindow seen = seen_window(shot.scene, view, fs.render);
     const SeenWindow seen_before = seen_window(shot.scene, before, fs.render);
+    BufferPool pool;
+    BufferPool* kept = state.range(4) ? &pool : nullptr;
     SpriteSet set;
+    size_t sprites = 0;
     for (auto _ : state) {
         SeenMemo memo;
         SpriteStageInput in{shot, view, plan, fs.render, lod, shot.sun_rays.get(), &seen};
         in.group_culling = state.range(1) != 0;
+        in.buffers = kept;
         if (state.range(2)) {
             state.PauseTiming();
             SpriteStageInput b{
                 shot, before, plan, fs.render, lod_before, shot.sun_rays.get(), &seen_before};
             b.seen_memo = &memo;
-            make_sprites(b);
+            b.buffers = kept;
+            SpriteSet first = make_sprites(b);
+            if (kept) kept->give_sprites(std::move(first.sprites));
             state.ResumeTiming();
             in.seen_memo = &memo;
         }
         set = make_sprites(in);
         benchmark::DoNotOptimize(set.sprites.data());
+        sprites = set.sprites.size();
+        if (kept) kept->give_sprites(std::move(set.sprites));
     }
-    state.counters["sprites"] = static_cast<double>(set.sprites.size());
+    state.counters["sprites"] = static_cast<double>(sprites);
     state.counters["by_group"] = static_cast<double>(set.grouped);
     state.counters["rays"] = static_cast<double>(set.occlusion_rays);
 }
 BENCHMARK(BM_Sprites)
-    ->ArgNames({"width", "group", "memo", "thin_px"})
-    ->Args({480, 0, 0, 0})
-    ->Args({480, 1, 0, 0})
-    ->Args({480, 1, 1, 0})
-    ->Args({480, 1, 1, 4})
-    ->Args({480, 1, 1, 6})
-    ->Args({1920, 0, 0, 0})
-    ->Args({1920, 1, 1, 0})
+    ->ArgNames({"width", "group", "memo", "thin_px", "kept"})
+    ->Args({480, 0, 0, 0, 0})
+    ->Args({480, 1, 0, 0, 0})
+    ->Args({480, 1, 1, 0, 0})
+    ->Args({480, 1, 1, 0, 1})
+    ->Args({480, 1, 1, 4, 0})
+    ->Args({480, 1, 1, 6, 0})
+    ->Args({1920, 0, 0, 0, 0})
+    ->Args({1920, 1, 1, 0, 0})
+    ->Args({1920, 1, 1, 0, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

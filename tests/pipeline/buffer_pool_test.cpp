@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "pipeline/frame/paint_frame.h"
+#include "pipeline/frame/sprites.h"
 #include "pipeline/input/scene.h"
 #include "pipeline/shot/shot.h"
 #include "tests/test_util.h"
@@ -71,6 +72,41 @@ TEST(BufferPool, FramesPaintedInKeptBuffersAreTheSameBytes) {
     EXPECT_EQ(a.rgba.data(), image_at) << "the frame before's image was taken again";
     ASSERT_EQ(a.rgba.size(), b.rgba.size());
     EXPECT_EQ(std::memcmp(a.rgba.data(), b.rgba.data(), a.rgba.size() * sizeof(float)), 0);
+}
+
+// The sprites stage's list and each item's part come back empty with their memory, and a frame
+// painted after them joins its sprites in the same list.
+TEST(BufferPool, KeepsTheSpriteListAndItsPartsForTheNextFrame) {
+    SceneDesc scene =
+        load_scene(test::source_dir() / "presets" / "scenes" / "forest-edge-walk.json");
+    scene.camera_params.width = 192;
+    scene.camera_params.height = 108;
+    const Shot shot = build_shot(std::move(scene));
+    FrameSettings kept = scene_frame_settings(shot.scene);
+    BufferPool pool;
+    kept.buffers = &pool;
+    EXPECT_EQ(pool.take_sprites().capacity(), 0u) << "nothing kept before a frame";
+    const FrameView view = view_at(shot.scene, frame_time(40, shot.scene.fps));
+    FrameReport rep;
+    paint_frame(shot, view, kept, &rep);
+    const uint64_t drawn = rep.leaf_sprites + rep.bark_sprites + rep.surface_sprites;
+    ASSERT_GT(drawn, 1000u);
+    std::vector<Sprite> list = pool.take_sprites();
+    EXPECT_TRUE(list.empty());
+    EXPECT_GE(list.capacity(), drawn);
+    const Sprite* list_at = list.data();
+    pool.give_sprites(std::move(list));
+    std::vector<std::vector<Sprite>> parts = pool.take_sprite_parts();
+    ASSERT_EQ(parts.size(), shot.item_count());
+    size_t held = 0;
+    for (const std::vector<Sprite>& p : parts) {
+        EXPECT_TRUE(p.empty());
+        held += p.capacity();
+    }
+    EXPECT_GE(held, drawn);
+    pool.give_sprite_parts(std::move(parts));
+    paint_frame(shot, view, kept);
+    EXPECT_EQ(pool.take_sprites().data(), list_at) << "the same frame's sprites fit the kept list";
 }
 
 }  // namespace
