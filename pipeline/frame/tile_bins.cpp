@@ -14,9 +14,10 @@ namespace pleinair {
 
 namespace {
 
-// A float's bits as an unsigned key in the float's order (-0 just below +0), so that sorting
-// keys orders the floats.
+// A float's bits as an unsigned key in the float's order (-0 taken as +0, which it equals), so
+// that sorting keys orders the floats.
 uint32_t ordered_bits(float f) {
+    if (f == 0.0f) f = 0.0f;
     uint32_t b;
     std::memcpy(&b, &f, sizeof b);
     return (b & 0x80000000u) ? ~b : b | 0x80000000u;
@@ -25,9 +26,9 @@ uint32_t ordered_bits(float f) {
 }  // namespace
 
 std::vector<uint32_t> depth_order(const std::vector<Sprite>& sprites) {
-    // One 64-bit key a sprite, farthest first and then by index: the comparator the order is
-    // defined by read two sprites' ranges at random places per comparison; the keys sort in
-    // place, a fifth of the time.
+    // One 64-bit key a sprite, farthest first and then by index (ranges are lengths, finite and
+    // not negative): sorting the keys takes half the time of a comparator reading two sprites'
+    // ranges at random places.
     const size_t n = sprites.size();
     std::vector<uint64_t> keys(n);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const auto& r) {

@@ -7,6 +7,7 @@
 #include <hwy/targets.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <glm/geometric.hpp>
@@ -359,6 +360,26 @@ TEST(DepthOrder, BackToFrontByDistanceFromTheEyeWithTiesByIndex) {
     const float depth[] = {3, 1, 2, 3, 1};
     for (size_t i = 0; i < s.size(); ++i) s[i].range = range[i], s[i].depth = depth[i];
     EXPECT_EQ(depth_order(s), (std::vector<uint32_t>{1, 2, 4, 3, 0}));
+}
+
+// The sorted keys give the order the rule defines (farther first, then by index), over many
+// ties, zeros of both signs and ranges a last bit apart.
+TEST(DepthOrder, KeysGiveTheOrderOfTheRule) {
+    std::vector<Sprite> s(20000);
+    uint32_t h = 12345;
+    for (size_t i = 0; i < s.size(); ++i) {
+        h = h * 1664525u + 1013904223u;
+        const float r = static_cast<float>(h >> 24) * 0.25f;  // 256 values: many ties
+        s[i].range = (h & 0x100u) ? std::nextafter(r, 1e9f) : r;
+        if (r == 0.0f && (h & 0x200u)) s[i].range = -0.0f;
+    }
+    std::vector<uint32_t> expect(s.size());
+    for (size_t i = 0; i < expect.size(); ++i) expect[i] = static_cast<uint32_t>(i);
+    std::sort(expect.begin(), expect.end(), [&](uint32_t a, uint32_t b) {
+        if (s[a].range != s[b].range) return s[a].range > s[b].range;
+        return a < b;
+    });
+    EXPECT_EQ(depth_order(s), expect);
 }
 
 TEST(DepthOrder, TurningTheCameraSwapsNoSprites) {
