@@ -51,14 +51,19 @@ TEST(BufferPool, KeepsTheEightLargest) {
     EXPECT_EQ(pool.take(1, 0.0f).capacity(), 1u);
 }
 
-// A walk's frame painted after another frame left the pool its image and stroke layers,
-// against the same frame painted in new buffers.
-TEST(BufferPool, FramesPaintedInKeptBuffersAreTheSameBytes) {
+// forest-edge-walk's shot at 192x108.
+Shot small_walk() {
     SceneDesc scene =
         load_scene(test::source_dir() / "presets" / "scenes" / "forest-edge-walk.json");
     scene.camera_params.width = 192;
     scene.camera_params.height = 108;
-    const Shot shot = build_shot(std::move(scene));
+    return build_shot(std::move(scene));
+}
+
+// A walk's frame painted after another frame left the pool its image and stroke layers,
+// against the same frame painted in new buffers.
+TEST(BufferPool, FramesPaintedInKeptBuffersAreTheSameBytes) {
+    const Shot shot = small_walk();
     const FrameSettings fresh = scene_frame_settings(shot.scene);
     FrameSettings kept = fresh;
     BufferPool pool;
@@ -77,11 +82,7 @@ TEST(BufferPool, FramesPaintedInKeptBuffersAreTheSameBytes) {
 // The sprites stage's list and each item's part come back empty with their memory, and a frame
 // painted after them joins its sprites in the same list.
 TEST(BufferPool, KeepsTheSpriteListAndItsPartsForTheNextFrame) {
-    SceneDesc scene =
-        load_scene(test::source_dir() / "presets" / "scenes" / "forest-edge-walk.json");
-    scene.camera_params.width = 192;
-    scene.camera_params.height = 108;
-    const Shot shot = build_shot(std::move(scene));
+    const Shot shot = small_walk();
     FrameSettings kept = scene_frame_settings(shot.scene);
     BufferPool pool;
     kept.buffers = &pool;
