@@ -17,6 +17,7 @@
 
 #include "pipeline/cli/commands.h"
 #include "pipeline/frame/buffer_pool.h"
+#include "pipeline/frame/mirror_memo.h"
 #include "pipeline/frame/paint_frame.h"
 #include "pipeline/frame/seen_memo.h"
 #include "pipeline/input/error.h"
@@ -250,6 +251,8 @@ std::vector<std::pair<double, int>> paint_frames(const Shot& shot, const std::ve
     std::vector<std::vector<PassReport>> later;  // --explain: the passes of frames after the first
     // Frames painted in order share most of their occlusion rays (seen_memo.h).
     SeenMemo memo;
+    // And their water strokes' mirrors (mirror_memo.h).
+    MirrorMemo mirrors;
     const PassTimer clock;
     double last_done = 0;
     auto in_frame = [](int f, auto&& fn) {
@@ -278,6 +281,7 @@ std::vector<std::pair<double, int>> paint_frames(const Shot& shot, const std::ve
         }
         FrameSettings settings = scene_frame_settings(shot.scene, cmd.aovs);
         settings.seen_memo = &memo;
+        settings.mirror_memo = &mirrors;
         settings.buffers = &buffers;
         if (!pending) last_done = clock.ms();
         FrameReport report;

@@ -15,6 +15,7 @@
 namespace pleinair {
 
 class BufferPool;
+class MirrorMemo;
 class SeenMemo;
 
 struct Shot;
@@ -45,6 +46,9 @@ struct FrameSettings {
     // Frames of one shot painted in order (animate, the coherence bench): the occlusion rays'
     // answers kept from one frame to the next (seen_memo.h). Null casts every ray.
     SeenMemo* seen_memo = nullptr;
+    // The same for water strokes' mirrors at their lattice times (mirror_memo.h). Null traces
+    // the lattice times a frame reads.
+    MirrorMemo* mirror_memo = nullptr;
     // Frames painted in a row: the image and stroke layers' memory kept from the frame before
     // (buffer_pool.h). Null allocates them anew.
     BufferPool* buffers = nullptr;

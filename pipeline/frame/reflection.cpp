@@ -1,4 +1,4 @@
-// water_reflectance, mirror and add_reflections.
+// water_reflectance, mirror, mirror_lattice and add_reflections.
 #include "pipeline/frame/reflection.h"
 
 #include <tbb/combinable.h>
@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "pipeline/frame/background.h"
+#include "pipeline/frame/mirror_memo.h"
 #include "pipeline/frame/sky_sprites.h"
 #include "pipeline/frame/surface_hit.h"
 #include "pipeline/shot/shot.h"
@@ -80,29 +81,129 @@ Color mirrored(const MirrorContext& c, const RayOrigin& at, const glm::vec3& n,
 }
 }  // namespace
 
-int mirror(const MirrorContext& c, const RayOrigin& at, const glm::vec3* normals, int count,
-           const glm::vec3& up, const glm::dvec3& dir, StrokeConstants& k) {
-    const float amount_max = clamp01(c.shot.scene.water.reflection);
-    if (!(amount_max > 0.0f) || !c.shot.view_rays || count < 1) return 0;
-    int rays = 0;
+Color mirror_seen(const MirrorContext& c, const RayOrigin& at, const glm::vec3* normals, int count,
+                  const glm::dvec3& dir, int& rays) {
     Color seen(0.0f);
     for (int i = 0; i < count; ++i) seen += mirrored(c, at, normals[i], dir, rays);
-    seen /= static_cast<float>(count);
+    return seen / static_cast<float>(count);
+}
+
+void set_mirror(const MirrorContext& c, const Color& seen, const glm::vec3& up,
+                const glm::dvec3& dir, StrokeConstants& k) {
+    const float amount_max = clamp01(c.shot.scene.water.reflection);
     const float fresnel = water_reflectance(static_cast<float>(glm::dot(dir, glm::dvec3(up))));
     const float amount = amount_max * fresnel;
     const float dim = 1.0f - kNearDarken * amount_max * (1.0f - fresnel);
     k.mirror = seen * (amount * dim);
     k.mirror_keep = (1.0f - amount) * dim;
+}
+
+int mirror(const MirrorContext& c, const RayOrigin& at, const glm::vec3* normals, int count,
+           const glm::vec3& up, const glm::dvec3& dir, StrokeConstants& k) {
+    if (!(clamp01(c.shot.scene.water.reflection) > 0.0f) || !c.shot.view_rays || count < 1)
+        return 0;
+    int rays = 0;
+    set_mirror(c, mirror_seen(c, at, normals, count, dir, rays), up, dir, k);
     return rays;
 }
 
-ReflectionReport add_reflections(const MirrorContext& c, SpriteSet& set) {
+MirrorLattice mirror_lattice(const SceneDesc& scene, const FrameView& view, int frames) {
+    MirrorLattice l;
+    if (frames <= 1 || !view.on_track || !(view.eye_speed > 0) || !scene.sun_track.empty() ||
+        scene.camera_track.keys.empty())
+        return l;
+    l.frames = frames;
+    l.u = view.time * scene.fps;
+    // A frame's own time, (N - 1) / fps times fps, may fall a last bit short of N - 1.
+    l.base = static_cast<int64_t>(std::floor(l.u + 1e-6));
+    if (std::abs(l.u - static_cast<double>(l.base)) < 1e-6) l.u = static_cast<double>(l.base);
+    l.first = l.base - frames + 1;
+    for (int64_t m = l.first; m <= l.base + frames; ++m) {
+        Camera cam = view.camera;
+        // The frame's own rule for its camera (view_at), so lattice time N - 1 is frame N's eye;
+        // a key the track's checks let through cannot fail here.
+        if (!track_camera(scene, static_cast<double>(m) / scene.fps, cam).empty())
+            cam = view.camera;
+        l.eyes.push_back(cam.eye);
+    }
+    return l;
+}
+
+int64_t mirror_phase(float label, int frames) {
+    return std::min<int64_t>(frames - 1, static_cast<int64_t>(label_hash(label, 61u) * frames));
+}
+
+namespace {
+
+// The mirror a particle finds from the eye at lattice time m: the memo's, or traced (and kept).
+struct LatticeMirror {
+    const MirrorContext& c;
+    const MirrorLattice& l;
+    MirrorMemo::Entry* entry;  // null: no memo
+    const RayOrigin& at;
+    const glm::dvec3& world;
+    const glm::vec3* normals;
+    int count;
+    int rays = 0;
+
+    Color at_time(int64_t m, int64_t keep) {
+        if (entry)
+            for (int s = 0; s < 2; ++s)
+                if (entry->time[s] == m) return entry->seen[s];
+        const glm::dvec3 dir = glm::normalize(world - l.eyes[static_cast<size_t>(m - l.first)]);
+        const Color seen = mirror_seen(c, at, normals, count, dir, rays);
+        if (entry) {
+            // Over the slot this frame does not read (the older when both are stale).
+            const int s = entry->time[0] == keep                ? 1
+                          : entry->time[1] == keep              ? 0
+                          : entry->time[0] == MirrorMemo::kNone ? 0
+                          : entry->time[1] == MirrorMemo::kNone ? 1
+                          : entry->time[0] < entry->time[1]     ? 0
+                                                                : 1;
+            entry->time[s] = m, entry->seen[s] = seen;
+        }
+        return seen;
+    }
+
+    // The colour at the frame's time: linear between the lattice times either side.
+    Color seen(float label) {
+        const int64_t k = l.frames, phase = mirror_phase(label, l.frames);
+        const int64_t m0 = l.base - (((l.base - phase) % k) + k) % k;
+        const float w =
+            static_cast<float>((l.u - static_cast<double>(m0)) / static_cast<double>(k));
+        const Color s0 = at_time(m0, m0 + k);
+        if (!(w > 0.0f)) return s0;
+        const Color s1 = at_time(m0 + k, m0);
+        return s0 + w * (s1 - s0);
+    }
+};
+
+}  // namespace
+
+ReflectionReport add_reflections(const MirrorContext& c, SpriteSet& set,
+                                 const MirrorLattice* lattice, MirrorMemo* memo) {
     ReflectionReport rep;
     const Shot& shot = c.shot;
+    if (!(clamp01(shot.scene.water.reflection) > 0.0f) || !shot.view_rays) return rep;
     const MaterialId water = shot.materials.surface(shot.scene.water.material);
     const float ripple = shot.scene.water.ripple;
     const int count = std::clamp(shot.scene.water.mirror_rays, 1, kMaxMirrorRays);
     const size_t trees = shot.trees->size();
+    const bool on_lattice = lattice && lattice->frames > 1;
+    auto is_water = [&](const Sprite& sp) {
+        return sp.kind == SpriteKind::kSurface && sp.material == water;
+    };
+    // The memo's arrays made here, on one thread, for the chunks with water in view.
+    std::vector<MirrorMemo::Entry*> entries;
+    if (on_lattice && memo) {
+        entries.assign(shot.land->chunks.size(), nullptr);
+        for (const Sprite& sp : set.sprites) {
+            if (!is_water(sp)) continue;
+            const size_t ch = sp.item - trees;
+            if (!entries[ch])
+                entries[ch] = memo->entries(ch, shot.land->chunks[ch].position.size());
+        }
+    }
     tbb::combinable<uint64_t> strokes{[] { return uint64_t{0}; }}, rays{[] { return uint64_t{0}; }};
     tbb::parallel_for(
         tbb::blocked_range<size_t>(0, set.sprites.size(), 512),
@@ -110,7 +211,7 @@ ReflectionReport add_reflections(const MirrorContext& c, SpriteSet& set) {
             FlushDenormals ftz;  // Embree's modes, while this task traces
             for (size_t i = range.begin(); i < range.end(); ++i) {
                 Sprite& sp = set.sprites[i];
-                if (sp.kind != SpriteKind::kSurface || !(sp.material == water)) continue;
+                if (!is_water(sp)) continue;
                 const SurfaceParticles& S = shot.land->chunks[sp.item - trees];
                 const size_t j = sp.particle;
                 const glm::dvec3 world(S.position[j]);
@@ -129,8 +230,15 @@ ReflectionReport add_reflections(const MirrorContext& c, SpriteSet& set) {
                                            ripple);
                 }
                 const glm::dvec3 dir = glm::normalize(world - c.view.camera.eye);
-                rays.local() += static_cast<uint64_t>(mirror(
-                    c, RayOrigin{world, up, true, shot.surface_lift}, n, count, up, dir, sp.k));
+                const RayOrigin at{world, up, true, shot.surface_lift};
+                if (on_lattice) {
+                    MirrorMemo::Entry* e = entries.empty() ? nullptr : entries[sp.item - trees] + j;
+                    LatticeMirror lm{c, *lattice, e, at, world, n, count};
+                    set_mirror(c, lm.seen(S.label[j]), up, dir, sp.k);
+                    rays.local() += static_cast<uint64_t>(lm.rays);
+                } else {
+                    rays.local() += static_cast<uint64_t>(mirror(c, at, n, count, up, dir, sp.k));
+                }
                 ++strokes.local();
             }
         });
@@ -141,13 +249,27 @@ ReflectionReport add_reflections(const MirrorContext& c, SpriteSet& set) {
 
 void reflections_stage(const FrameContext& ctx, const RayScene* sun_rays, SpriteSet& sprites) {
     StagePhase phase(ctx, "reflections");
-    const ReflectionReport r = add_reflections(
-        mirror_context(ctx.shot, ctx.view, ctx.plan, ctx.render(), sun_rays), sprites);
+    const RenderSettings& rs = ctx.render();
+    const MirrorLattice lattice = mirror_lattice(ctx.shot.scene, ctx.view, rs.reflection_frames);
+    MirrorMemo* memo = lattice.frames > 1 ? ctx.settings.mirror_memo : nullptr;
+    const MirrorContext c = mirror_context(ctx.shot, ctx.view, ctx.plan, rs, sun_rays);
+    if (memo)
+        memo->begin_frame(ctx.shot, c.sun_rays, lattice.frames, static_cast<int>(rs.shadows),
+                          c.flat.sky, c.flat.shadows);
+    const ReflectionReport r = add_reflections(c, sprites, &lattice, memo);
     ctx.report.reflection_rays = r.rays;
+    std::string how =
+        std::to_string(r.strokes) + " water strokes, " + std::to_string(r.rays) + " rays";
+    if (lattice.frames > 1)
+        how += memo ? " (traced from the eye every " + std::to_string(lattice.frames) +
+                          " frames, the others kept from frames before)"
+                    : " (traced from the eye every " + std::to_string(lattice.frames) +
+                          " frames either side of this one)";
     phase.done(
         "each water stroke in view takes the colour its reflected ray finds (surfaces, "
-        "trunks, leaf strokes, the sky), by water's Fresnel reflectance",
-        std::to_string(r.strokes) + " water strokes, " + std::to_string(r.rays) + " rays");
+        "trunks, leaf strokes, the sky), by water's Fresnel reflectance; while the camera "
+        "moves, from its eye at every /render/reflection_frames-th frame, interpolated between",
+        how);
 }
 
 }  // namespace pleinair

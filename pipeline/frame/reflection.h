@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <glm/vec3.hpp>
+#include <vector>
 
 #include "pipeline/frame/frame_context.h"
 #include "pipeline/frame/frame_plan.h"
@@ -17,6 +18,7 @@ namespace pleinair {
 struct Shot;
 struct RayOrigin;
 class RayScene;
+class MirrorMemo;
 
 // Schlick's approximation of water's reflectance (F0 = 0.02) at the cosine of the angle
 // between the view and the normal; 1 at grazing angles.
@@ -35,19 +37,47 @@ struct MirrorContext {
 MirrorContext mirror_context(const Shot& shot, const FrameView& view, const FramePlan& plan,
                              const RenderSettings& settings, const RayScene* sun_rays);
 
-// Sets k.mirror and k.mirror_keep for water at `at`: the mean of what the view `dir` (unit,
-// from the eye) reflected about each of `count` normals (unit; ripples lean them off the
-// water's normal `up`) finds. Returns the rays cast.
+// The mean of what the view `dir` (unit, from the eye) reflected about each of `count` normals
+// (unit; ripples lean them off the water's normal) finds from water at `at`. Adds its rays.
 inline constexpr int kMaxMirrorRays = 16;
+Color mirror_seen(const MirrorContext& c, const RayOrigin& at, const glm::vec3* normals, int count,
+                  const glm::dvec3& dir, int& rays);
+// k.mirror and k.mirror_keep from what the mirror saw, in the share water's Fresnel
+// reflectance gives the view `dir` against the water's normal `up`.
+void set_mirror(const MirrorContext& c, const Color& seen, const glm::vec3& up,
+                const glm::dvec3& dir, StrokeConstants& k);
+// Both for one view: sets k.mirror and k.mirror_keep. Returns the rays cast.
 int mirror(const MirrorContext& c, const RayOrigin& at, const glm::vec3* normals, int count,
            const glm::vec3& up, const glm::dvec3& dir, StrokeConstants& k);
+
+// Where a moving camera's mirrors are traced from (render/reflection_frames K > 1; a still
+// sun): a water stroke traces its mirror from the eye at lattice times m (frame m + 1 of the
+// track's clock) congruent to its own phase modulo K, so a K-th of the strokes trace in any
+// one frame, and takes the colour between two of them linearly; the Fresnel share stays the
+// frame's own. A mirror read through ripples changes colour wherever its rays cross an edge,
+// and linear in time it cannot jump from one frame to the next. frames 1: the frame's eye.
+struct MirrorLattice {
+    int frames = 1;
+    double u = 0;                  // the frame's time in frames of the track's clock
+    int64_t base = 0;              // floor(u)
+    int64_t first = 0;             // the lattice time of eyes[0]
+    std::vector<glm::dvec3> eyes;  // base - K + 1 .. base + K
+};
+MirrorLattice mirror_lattice(const SceneDesc& scene, const FrameView& view, int frames);
+// A water particle's phase on a lattice of `frames`, drawn from its label: its lattice times
+// are those congruent to it.
+int64_t mirror_phase(float label, int frames);
 
 struct ReflectionReport {
     uint64_t strokes = 0, rays = 0;
 };
 
-// Every water stroke's mirror for the frame, in parallel (the plan's reflections).
-ReflectionReport add_reflections(const MirrorContext& c, SpriteSet& sprites);
+// Every water stroke's mirror for the frame, in parallel (the plan's reflections): from the
+// frame's eye, or on `lattice` when it has frames > 1, the lattice times' mirrors read from
+// and kept in `memo` when there is one.
+ReflectionReport add_reflections(const MirrorContext& c, SpriteSet& sprites,
+                                 const MirrorLattice* lattice = nullptr,
+                                 MirrorMemo* memo = nullptr);
 
 // The reflections stage: add_reflections for the frame, its rays in the report.
 void reflections_stage(const FrameContext& ctx, const RayScene* sun_rays, SpriteSet& sprites);

@@ -429,6 +429,13 @@ void visit_scene(SceneDesc& s, V& v) {
                   "a stroke a silhouette uncovers or hides appears or disappears over that many "
                   "frames instead of in one (each frame changes it by at most 1 / this); 1 casts "
                   "them at the frame's time only. A still camera is unaffected.");
+        v.integer("reflection_frames", r.reflection_frames, {1, 16},
+                  "While the camera moves, a water stroke traces its mirror (/water/mirror_rays "
+                  "rays) from where the eye is every this many frames, each stroke at its own "
+                  "frames, and takes the colour in between linearly: a frame traces this share "
+                  "of the mirrors, and a reflection cannot jump from one frame to the next. 1 "
+                  "traces every stroke from the frame's own eye. A still camera, or a moving "
+                  "sun, traces every frame.");
         v.boolean("pigment_mixing", r.pigment_mixing,
                   "Mix overlapping strokes as paint (Kubelka-Munk pigments in a latent space, "
                   "after Sochorova and Jamriska 2021): a thin yellow over a blue turns green "

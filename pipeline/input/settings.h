@@ -52,6 +52,10 @@ struct RenderSettings {
     // averaged, so a stroke a silhouette uncovers or hides takes that many frames to change
     // whole; 1 decides it at the frame's time alone. Stills are unaffected.
     int occlusion_frames = 4;
+    // Frames of camera travel between the eyes a water stroke traces its mirror from, its
+    // colour interpolated between (reflection.h's MirrorLattice); 1 traces every frame from its
+    // own eye. Stills are unaffected.
+    int reflection_frames = 4;
     GraftalRaster graftal_raster = GraftalRaster::kScanline;
     // Strokes mix as pigments (shading/pigment.h) instead of alpha blending in linear RGB.
     bool pigment_mixing = false;

@@ -1,6 +1,6 @@
-// Still water's mirror (pipeline/frame/reflection.h) and the look's measures (pipeline/bench/look_measures.h): the
-// Fresnel curve, the measures on images made to have a known answer, and the small
-// Mortefontaine's pond mirroring its far bank only with reflections on.
+// Still water's mirror (pipeline/frame/reflection.h) and the look's measures
+// (pipeline/bench/look_measures.h): the Fresnel curve, the measures on images made to have a known
+// answer, and the small Mortefontaine's pond mirroring its far bank only with reflections on.
 #include "pipeline/frame/reflection.h"
 
 #include <gtest/gtest.h>
@@ -8,6 +8,8 @@
 #include <cmath>
 
 #include "pipeline/bench/look_measures.h"
+#include "pipeline/frame/lod.h"
+#include "pipeline/frame/mirror_memo.h"
 #include "pipeline/frame/paint_frame.h"
 #include "pipeline/shot/shot.h"
 #include "test_util.h"
@@ -174,6 +176,120 @@ TEST(Reflection, APostOnTheFarBankStandsUpsideDownInThePond) {
     if (far_on > 0 && far_beside > 0) {
         EXPECT_LT(far_beside - far_on, 0.5 * dark_on) << "dark far below the post's reflection";
     }
+}
+
+// mortefontaine-walk small, for the mirrors of a moving camera (one occlusion ray a stroke:
+// which strokes show does not matter here, and the tests run under the sanitizers too).
+Shot small_walk() {
+    return build_shot(
+        load_scene(test::source_dir() / "presets" / "scenes" / "mortefontaine-walk.json",
+                   {"/camera/width=160", "/camera/height=90", "/render/occlusion_frames=1"}));
+}
+
+// A moving camera's mirrors on a lattice of 4 frames: each water stroke's colour is the line
+// between what it mirrors from the eye at the lattice frames either side of the frame, those
+// traced from exactly the eye the frame there has; the Fresnel share is the frame's own.
+TEST(Reflection, AMovingCamerasMirrorIsLinearBetweenItsLatticeFrames) {
+    const Shot shot = small_walk();
+    const FrameSettings fs = scene_frame_settings(shot.scene);
+    const double fps = shot.scene.fps;
+    const int K = 4, f = 40;
+    const FrameView view = view_at(shot.scene, frame_time(f, fps));
+    ASSERT_GT(view.eye_speed, 0.0);
+    const FramePlan plan = plan_frame(shot, fs);
+    ASSERT_TRUE(plan.reflections);
+    const FrameLod lod = level_of_detail(shot, view, fs.render);
+    SpriteSet water = make_sprites({shot, view, plan, fs.render, lod, shot.sun_rays.get()});
+    const MaterialId wm = shot.materials.surface(shot.scene.water.material);
+    std::erase_if(water.sprites, [&](const Sprite& sp) {
+        return !(sp.kind == SpriteKind::kSurface && sp.material == wm);
+    });
+    ASSERT_GT(water.sprites.size(), 100u);
+
+    const MirrorLattice lattice = mirror_lattice(shot.scene, view, K);
+    ASSERT_EQ(lattice.frames, K);
+    EXPECT_EQ(lattice.base, f - 1);
+    EXPECT_EQ(lattice.u, double(f - 1));
+    EXPECT_EQ(mirror_lattice(shot.scene, still_view(shot.scene), K).frames, 1) << "a still";
+    const MirrorContext c = mirror_context(shot, view, plan, fs.render, shot.sun_rays.get());
+    SpriteSet on = water;
+    const ReflectionReport rep = add_reflections(c, on, &lattice);
+    EXPECT_EQ(rep.strokes, water.sprites.size());
+
+    // Each lattice frame's own mirrors (frame g is lattice time g - 1), and what the frame's
+    // Fresnel share makes of a colour.
+    const size_t trees = shot.trees->size();
+    auto particle = [&](const Sprite& sp) -> std::pair<const SurfaceParticles&, size_t> {
+        return {shot.land->chunks[sp.item - trees], sp.particle};
+    };
+    std::vector<SpriteSet> exact;
+    std::vector<FrameView> views;
+    for (int g = f - K + 1; g <= f + K; ++g)
+        views.push_back(view_at(shot.scene, frame_time(g, fps)));
+    for (const FrameView& v : views) {
+        SpriteSet e = water;
+        add_reflections(mirror_context(shot, v, plan, fs.render, shot.sun_rays.get()), e);
+        exact.push_back(std::move(e));
+    }
+    auto share = [&](const FrameView& v, const Sprite& sp) {
+        const auto [S, j] = particle(sp);
+        StrokeConstants k;
+        set_mirror(c, Color(1.0f), S.normal(j),
+                   glm::normalize(glm::dvec3(S.position[j]) - v.camera.eye), k);
+        return k.mirror.x;
+    };
+    int phases[K] = {};
+    for (size_t i = 0; i < water.sprites.size(); ++i) {
+        const Sprite& sp = on.sprites[i];
+        const auto [S, j] = particle(sp);
+        const int64_t phase = mirror_phase(S.label[j], K);
+        ASSERT_GE(phase, 0);
+        ASSERT_LT(phase, K);
+        ++phases[phase];
+        const int64_t m0 = (f - 1) - (((f - 1 - phase) % K) + K) % K;
+        const size_t a = size_t(m0 - (f - K)), b = a + K;  // their places in `views`
+        const float w = float(f - 1 - m0) / K;
+        if (w == 0.0f) {  // on its lattice: the frame's own mirror, to the bit
+            EXPECT_EQ(sp.k.mirror, exact[a].sprites[i].k.mirror) << i;
+            EXPECT_EQ(sp.k.mirror_keep, exact[a].sprites[i].k.mirror_keep) << i;
+            continue;
+        }
+        const Color s0 = exact[a].sprites[i].k.mirror / share(views[a], sp);
+        const Color s1 = exact[b].sprites[i].k.mirror / share(views[b], sp);
+        const Color want = (s0 + w * (s1 - s0)) * share(view, sp);
+        for (int ch = 0; ch < 3; ++ch)
+            EXPECT_NEAR(sp.k.mirror[ch], want[ch], 1e-5f + 1e-4f * want[ch]) << i << " " << ch;
+        EXPECT_EQ(sp.k.mirror_keep, exact[K - 1].sprites[i].k.mirror_keep) << "the frame's share";
+    }
+    for (int p = 0; p < K; ++p) EXPECT_GT(phases[p], int(water.sprites.size()) / (2 * K)) << p;
+}
+
+// Frames painted in order with the mirrors kept from the frames before are the frames painted
+// alone, and trace a fraction of their mirrors; the lattice changes a still nothing.
+TEST(Reflection, MirrorsKeptFromFrameToFramePaintTheFramesPaintedAlone) {
+    const Shot shot = small_walk();
+    MirrorMemo memo;
+    uint64_t kept_rays = 0, alone_rays = 0;
+    for (int f = 30; f < 36; ++f) {
+        SCOPED_TRACE(f);
+        const FrameView view = view_at(shot.scene, frame_time(f, shot.scene.fps));
+        FrameSettings fs = scene_frame_settings(shot.scene);
+        FrameReport alone, kept;
+        const Frame a = paint_frame(shot, view, fs, &alone);
+        fs.mirror_memo = &memo;
+        const Frame b = paint_frame(shot, view, fs, &kept);
+        EXPECT_EQ(a.rgba, b.rgba);
+        alone_rays += alone.reflection_rays, kept_rays += kept.reflection_rays;
+    }
+    EXPECT_GT(kept_rays, 0u);
+    // Alone, a frame traces two lattice frames a stroke; in order, a quarter of one after the
+    // first.
+    EXPECT_LT(kept_rays * 2, alone_rays);
+
+    FrameSettings fs = scene_frame_settings(shot.scene), one = fs;
+    one.render.reflection_frames = 1;
+    const FrameView still = still_view(shot.scene);
+    EXPECT_EQ(paint_frame(shot, still, fs).rgba, paint_frame(shot, still, one).rgba);
 }
 
 }  // namespace
