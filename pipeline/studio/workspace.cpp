@@ -234,6 +234,7 @@ ChangeLevel Workspace::apply(std::vector<std::pair<std::string, std::string>> se
     if (level < ChangeLevel::kScene && !same_placement(scene_, next)) level = ChangeLevel::kScene;
     sets_ = std::move(sets);
     scene_ = std::move(next);
+    forget_frames();
     if (level == ChangeLevel::kFrame) {
         camera_moved_ = true;
     } else {
@@ -242,6 +243,11 @@ ChangeLevel Workspace::apply(std::vector<std::pair<std::string, std::string>> se
             regrow_.insert(regrow_.end(), families.begin(), families.end());
     }
     return level;
+}
+
+void Workspace::forget_frames() {
+    seen_ = SeenMemo{};
+    mirrors_ = MirrorMemo{};
 }
 
 void Workspace::rebuild(bool for_preview, StudioFrame& out) {
@@ -279,6 +285,7 @@ void Workspace::rebuild(bool for_preview, StudioFrame& out) {
     ShotOptions carry = options;
     carry.carry_from = shot_.get();
     shot_ = std::make_unique<Shot>(build_shot(scene_, trees_, land_, carry));
+    forget_frames();
     out.rebuilt = *level;
     out.rebuilt_any = true;
     out.built = shot_->passes;
@@ -309,6 +316,8 @@ StudioFrame Workspace::paint(std::optional<int> frame, bool preview,
     FrameSettings settings = scene_frame_settings(shot_->scene);
     settings.abandon = abandon;
     settings.buffers = &buffers_;
+    settings.seen_memo = &seen_;
+    settings.mirror_memo = &mirrors_;
     const auto t0 = std::chrono::steady_clock::now();
     out.frame = paint_frame(*shot_, view, settings, &out.report);
     out.paint_ms = ms_since(t0);

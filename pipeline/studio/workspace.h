@@ -15,6 +15,8 @@
 #include "pipeline/frame/buffer_pool.h"
 #include "pipeline/frame/frame_image.h"
 #include "pipeline/frame/frame_report.h"
+#include "pipeline/frame/mirror_memo.h"
+#include "pipeline/frame/seen_memo.h"
 #include "pipeline/input/scene.h"
 #include "pipeline/shot/pass_report.h"
 
@@ -87,6 +89,9 @@ class Workspace {
     // stages (FrameAbandoned).
     StudioFrame paint(std::optional<int> frame, bool preview,
                       const std::function<bool()>& abandon = {});
+    // Empties what frames painted one after another share (done at every change): the next
+    // frame is painted as if alone, the same bytes (benchmarks, for the ratio).
+    void forget_frames();
 
     // Every control the page builds: the families' tree and shader keys (rows of the key
     // tables with their current values), palettes, the camera, the frames; JSON.
@@ -126,6 +131,11 @@ class Workspace {
     std::unique_ptr<Shot> shot_;
     // Stroke layers' memory kept from one painted frame to the next (buffer_pool.h).
     BufferPool buffers_;
+    // Frames of a walk painted one after another (stepping or playing through it) share their
+    // occlusion answers and water mirrors, as animate's do (seen_memo.h, mirror_memo.h);
+    // emptied at every change and every rebuilt shot, so none outlives what it was traced in.
+    SeenMemo seen_;
+    MirrorMemo mirrors_;
     // What the changes since the shot was built reach: the deepest level beyond the camera,
     // the families to regrow, and whether the camera moved.
     std::optional<ChangeLevel> pending_;

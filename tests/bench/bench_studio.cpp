@@ -1,7 +1,8 @@
 // What the studio's user waits for, on all cores: a tree key changed and the preview painted
 // (480x270, the family regrown, the shot rebuilt, the frame painted and encoded as the page
 // gets it), a camera step on a still scene (the preview painted from the shot already built),
-// and a shot scrubbed frame by frame at preview size. HTTP and the browser are not in it.
+// a shot scrubbed frame by frame at preview size, and a walk played. HTTP and the browser are
+// not in it.
 // Figures: BENCHMARKS.md, "The studio".
 #include <benchmark/benchmark.h>
 
@@ -131,6 +132,36 @@ BENCHMARK_CAPTURE(BM_StudioScrub, mortefontaine_walk, std::string("mortefontaine
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(8);
+
+// A walk played: each iteration paints the next frame at preview size, as the page's Play
+// steps, from frame 20 on. `kept` 0 empties the workspace's memos of the frames before (each
+// frame as if painted alone), for the ratio.
+void BM_StudioPlay(benchmark::State& state, const std::string& scene) {
+    Workspace ws(scene, kSize);
+    const bool kept = state.range(0) != 0;
+    encode(ws.paint(20, true));
+    int f = 21;
+    for (auto _ : state) {
+        if (!kept) ws.forget_frames();
+        encode(ws.paint(f++, true));
+    }
+    state.counters["frames_per_s"] =
+        benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK_CAPTURE(BM_StudioPlay, mortefontaine_walk, std::string("mortefontaine-walk"))
+    ->ArgName("kept")
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(12);
+BENCHMARK_CAPTURE(BM_StudioPlay, forest_edge_walk, std::string("forest-edge-walk"))
+    ->ArgName("kept")
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(12);
 
 // A frame's encoding for the page: JPEG previews, PNG at rest.
 void BM_StudioEncode(benchmark::State& state, const std::string& ext, bool preview) {

@@ -270,7 +270,7 @@ TEST(Reflection, MirrorsKeptFromFrameToFramePaintTheFramesPaintedAlone) {
     const Shot shot = small_walk();
     MirrorMemo memo;
     uint64_t kept_rays = 0, alone_rays = 0;
-    for (int f = 30; f < 36; ++f) {
+    for (int f = 30; f < 35; ++f) {
         SCOPED_TRACE(f);
         const FrameView view = view_at(shot.scene, frame_time(f, shot.scene.fps));
         FrameSettings fs = scene_frame_settings(shot.scene);

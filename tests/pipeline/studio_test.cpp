@@ -123,6 +123,26 @@ TEST(Studio, ACameraMovePreviewsFromTheLastShotThenPaintsExactlyAtRest) {
     EXPECT_EQ(rest.frame.rgba, fresh(ws, false).rgba);
 }
 
+// Frames of a walk stepped through in turn paint what each painted alone paints, the later ones
+// with a fraction of the mirrors traced; after a change too.
+TEST(Studio, FramesSteppedThroughInTurnAreTheFramesPaintedAlone) {
+    const std::vector<std::string> small = {"/camera/width=160", "/camera/height=90",
+                                            "/render/occlusion_frames=2"};
+    Workspace ws("mortefontaine-walk", small);
+    auto alone = [&](int frame) {
+        Workspace again(ws.scene_file().string(), ws.override_args());
+        return again.paint(frame, false);
+    };
+    (void)ws.paint(30, false);
+    (void)ws.paint(31, false);
+    const StudioFrame third = ws.paint(32, false), third_alone = alone(32);
+    EXPECT_EQ(third.frame.rgba, third_alone.frame.rgba);
+    EXPECT_GT(third.report.reflection_rays, 0u);
+    EXPECT_LT(third.report.reflection_rays * 2, third_alone.report.reflection_rays);
+    (void)ws.set("/water/ripple", "0.05");
+    EXPECT_EQ(ws.paint(33, false).frame.rgba, alone(33).frame.rgba) << "after a change";
+}
+
 TEST(Studio, ABadValueChangesNothing) {
     Workspace ws(two_family_scene().string());
     ws.set("/families/oak/tree/trunk/taper/base", "0.8");
