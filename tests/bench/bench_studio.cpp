@@ -148,20 +148,14 @@ void BM_StudioPlay(benchmark::State& state, const std::string& scene) {
     state.counters["frames_per_s"] =
         benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
+void play_runs(benchmark::internal::Benchmark* b) {
+    b->ArgName("kept")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+    b->Iterations(12);
+}
 BENCHMARK_CAPTURE(BM_StudioPlay, mortefontaine_walk, std::string("mortefontaine-walk"))
-    ->ArgName("kept")
-    ->Arg(0)
-    ->Arg(1)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Iterations(12);
+    ->Apply(play_runs);
 BENCHMARK_CAPTURE(BM_StudioPlay, forest_edge_walk, std::string("forest-edge-walk"))
-    ->ArgName("kept")
-    ->Arg(0)
-    ->Arg(1)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Iterations(12);
+    ->Apply(play_runs);
 
 // A frame's encoding for the page: JPEG previews, PNG at rest.
 void BM_StudioEncode(benchmark::State& state, const std::string& ext, bool preview) {
