@@ -90,8 +90,8 @@ SpriteSet sky_sprites(const Shot& shot, const FrameView& view, const FramePlan& 
         // Each stroke a little lighter or darker than the field: the brush's own load of paint.
         const float l = clamp01(s.lightness + p.stroke_jitter * (label_hash(label, 6) - 0.5f));
         sp.k.lightness = l;
-        const float f = stroke_frequency(shader, 0.0f, l);
-        sp.k.frequ_s = f * shader.s_frequ_scale, sp.k.frequ_t = f * shader.t_frequ_scale;
+        const StrokeNoise n = stroke_noise_for(shader, l, 0.0f, label);
+        sp.k.frequ_s = n.frequ_s, sp.k.frequ_t = n.frequ_t;
         if (!plan.sub_stroke) sp.k.sub_amt = 0;
         reseed_noise(sp.k, plan.noise_reseed);
         out.sprites.push_back(sp);

@@ -141,8 +141,9 @@ void shade_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in,
         if (in.kind == SpriteKind::kLeaf && p.sun_side > 0.0f) {
             const float side = 0.5f + 0.5f * glm::dot(in.from_center, c.sun);
             out.k.lightness = crown_side_lightness(p, out.k.lightness, side);
-            const float f = stroke_frequency(p, in.center_distance, out.k.lightness);
-            out.k.frequ_s = f * p.s_frequ_scale, out.k.frequ_t = f * p.t_frequ_scale;
+            const StrokeNoise n =
+                stroke_noise_for(p, out.k.lightness, in.center_distance, in.label);
+            out.k.frequ_s = n.frequ_s, out.k.frequ_t = n.frequ_t;
         }
     }
     out.kind = in.kind;

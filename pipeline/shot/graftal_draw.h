@@ -9,9 +9,9 @@
 
 #include "pipeline/input/camera.h"
 #include "pipeline/input/graftal_desc.h"
+#include "pipeline/input/settings.h"
 #include "pipeline/shot/graftal_instances.h"
 #include "pipeline/shot/graftal_lod.h"
-#include "pipeline/input/settings.h"
 
 namespace pleinair {
 
