@@ -153,13 +153,10 @@ struct LatticeMirror {
         const glm::dvec3 dir = glm::normalize(world - l.eyes[static_cast<size_t>(m - l.first)]);
         const Color seen = mirror_seen(c, at, normals, count, dir, rays);
         if (entry) {
-            // Over the slot this frame does not read (the older when both are stale).
-            const int s = entry->time[0] == keep                ? 1
-                          : entry->time[1] == keep              ? 0
-                          : entry->time[0] == MirrorMemo::kNone ? 0
-                          : entry->time[1] == MirrorMemo::kNone ? 1
-                          : entry->time[0] < entry->time[1]     ? 0
-                                                                : 1;
+            // Over the slot this frame does not read, else the older (kNone is the oldest).
+            const int s = entry->time[0] == keep   ? 1
+                          : entry->time[1] == keep ? 0
+                                                   : (entry->time[0] < entry->time[1] ? 0 : 1);
             entry->time[s] = m, entry->seen[s] = seen;
         }
         return seen;
@@ -261,10 +258,8 @@ void reflections_stage(const FrameContext& ctx, const RayScene* sun_rays, Sprite
     std::string how =
         std::to_string(r.strokes) + " water strokes, " + std::to_string(r.rays) + " rays";
     if (lattice.frames > 1)
-        how += memo ? " (traced from the eye every " + std::to_string(lattice.frames) +
-                          " frames, the others kept from frames before)"
-                    : " (traced from the eye every " + std::to_string(lattice.frames) +
-                          " frames either side of this one)";
+        how += " (traced from the eye every " + std::to_string(lattice.frames) + " frames" +
+               (memo ? ", the others kept from frames before)" : " either side of this one)");
     phase.done(
         "each water stroke in view takes the colour its reflected ray finds (surfaces, "
         "trunks, leaf strokes, the sky), by water's Fresnel reflectance; while the camera "

@@ -50,15 +50,10 @@ struct Underpainting {
 Color underpaint_color(const Shot& shot, const FrameView& view, const FramePlan& plan,
                        const RenderSettings& rs, const RayScene* sun_rays, const RayHit& h,
                        const glm::dvec3& world, glm::vec3 n, const glm::dvec3& dir,
-                       const MirrorContext* mirrors) {
+                       const MirrorContext& mirrors) {
     SurfaceHit s = surface_hit(shot, view, plan, rs, sun_rays, h, world, n, dir);
-    if (plan.reflections && s.water) {
-        const RayOrigin at{world, s.n, true, shot.surface_lift};
-        if (mirrors)
-            mirror(*mirrors, at, &s.n, 1, s.n, dir, s.k);
-        else
-            mirror(mirror_context(shot, view, plan, rs, sun_rays), at, &s.n, 1, s.n, dir, s.k);
-    }
+    if (plan.reflections && s.water)
+        mirror(mirrors, RayOrigin{world, s.n, true, shot.surface_lift}, &s.n, 1, s.n, dir, s.k);
     return finish_color(s.k, s.base);
 }
 
@@ -111,7 +106,7 @@ Underpainting trace_underpainting(const Shot& shot, const FrameView& view, const
             const glm::dvec3 world = cam.eye + dir * static_cast<double>(h.t);
             const size_t c = static_cast<size_t>(j) * u.w + i;
             u.color[c] =
-                underpaint_color(shot, view, plan, rs, sun_rays, h, world, h.normal, dir, &mirrors);
+                underpaint_color(shot, view, plan, rs, sun_rays, h, world, h.normal, dir, mirrors);
             u.cover[c] = 1.0f;
             u.depth[c] = static_cast<float>(glm::dot(world - cam.eye, cam.forward));
         }

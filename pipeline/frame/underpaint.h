@@ -18,11 +18,11 @@ struct MirrorContext;
 // seen along dir): its material's palette at a middle-depth stroke's lightness, in the sun's
 // light and shadow, pushed into the distance when the plan has atmosphere; water mirrors what
 // it reflects when the plan has reflections, through `mirrors` (the frame's mirror_context,
-// built once; null builds one for this hit).
+// built once).
 Color underpaint_color(const Shot& shot, const FrameView& view, const FramePlan& plan,
                        const RenderSettings& settings, const RayScene* sun_rays, const RayHit& h,
                        const glm::dvec3& world, glm::vec3 n, const glm::dvec3& dir,
-                       const MirrorContext* mirrors = nullptr);
+                       const MirrorContext& mirrors);
 
 // A flat palette colour and a depth where the camera sees terrain, water, rocks or trunks, at
 // underpaint_scale of the resolution, so no sky shows between strokes, over the background.
