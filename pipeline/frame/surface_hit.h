@@ -8,6 +8,7 @@
 
 #include "pipeline/frame/frame_plan.h"
 #include "pipeline/frame/frame_view.h"
+#include "pipeline/shot/materials.h"
 #include "pipeline/shot/rays.h"
 #include "shading/stroke_shader.h"
 
@@ -20,7 +21,14 @@ struct SurfaceHit {
     Color base;          // its palette colour, before finish_color
     bool water = false;  // the hit is still water (the underpainting mirrors it)
     glm::vec3 n{0.0f};   // the normal, facing the ray
+    MaterialId material;
+    float sun = 1.0f;  // the sun's light reaching it past its casters (1 without shadows)
 };
+
+// The material a hit `h` of the camera's scene shows at `world`, and whether it is still water:
+// surface_hit's own rule, without the shading.
+MaterialId surface_material(const Shot& shot, const RayHit& h, const glm::dvec3& world,
+                            bool& water);
 
 // The hit `h` at `world` (normal n, seen along dir).
 SurfaceHit surface_hit(const Shot& shot, const FrameView& view, const FramePlan& plan,
