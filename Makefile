@@ -94,10 +94,10 @@ fuzz: deps
 bench: build
 	$(BUILD)/tests/pleinair_bench
 
-# Regenerates the key references in README.md (trees, shaders, scenes, graftals, imposters) from the key tables in
-# the code, between their BEGIN/END markers.
+# Regenerates the key references in README.md (trees, shaders, scenes, graftals, imposters, the
+# draft's settings) from the key tables in the code, between their BEGIN/END markers.
 reference: build
-	for kind in trees shaders scenes graftals imposters; do \
+	for kind in trees shaders scenes graftals imposters draft; do \
 	    $(BUILD)/pleinair presets --reference $$kind > $(BUILD)/reference.md && \
 	    awk -v ref=$(BUILD)/reference.md -v kind=$$kind \
 	        '$$0 ~ "<!-- END " kind " reference" {skip=0} !skip {print} \

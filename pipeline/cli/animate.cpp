@@ -20,6 +20,7 @@
 #include "pipeline/frame/mirror_memo.h"
 #include "pipeline/frame/paint_frame.h"
 #include "pipeline/frame/seen_memo.h"
+#include "pipeline/input/draft.h"
 #include "pipeline/input/error.h"
 #include "pipeline/input/frame_range.h"
 #include "pipeline/input/presets.h"
@@ -328,6 +329,7 @@ int run_animate(const AnimateCommand& cmd) {
     if (!cmd.video.empty() && frames.size() > 1 && frames[1] - frames[0] != 1)
         throw InputError("--video", "", "a video needs every frame of its range (no xSTEP)");
     if (cmd.preview) halve_for_preview(scene, file.string());
+    if (cmd.draft) apply_draft(scene.render, cmd.set);
     // One frame painted while the one before is written.
     check_job_memory(scene, cmd.aovs, pattern.path(1), 2, file.string());
     const fs::path dir = fs::path(pattern.path(0)).parent_path();

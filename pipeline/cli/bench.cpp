@@ -8,9 +8,9 @@
 #include <memory>
 
 #include "pipeline/cli/commands.h"
-#include "pipeline/output/image_io.h"
 #include "pipeline/frame/paint_frame.h"
 #include "pipeline/input/presets.h"
+#include "pipeline/output/image_io.h"
 
 namespace pleinair {
 

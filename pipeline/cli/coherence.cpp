@@ -8,6 +8,7 @@
 #include "pipeline/bench/coherence_measures.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/draft.h"
 #include "pipeline/input/error.h"
 #include "pipeline/input/frame_range.h"
 #include "pipeline/input/presets.h"
@@ -23,6 +24,7 @@ int run_bench_coherence(const BenchCommand& cmd) {
     const std::vector<int> frames = frames_to_paint(scene, cmd.frames);
     check_views(scene, frames, file);
     if (cmd.preview) halve_for_preview(scene, file);
+    if (cmd.draft) apply_draft(scene.render, cmd.set);
     std::optional<FramePattern> save;
     if (!cmd.save.empty()) {
         save = parse_frame_pattern(cmd.save, "--save");

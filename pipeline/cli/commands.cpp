@@ -9,19 +9,20 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "pipeline/output/contact_sheet.h"
+#include "pipeline/input/draft.h"
 #include "pipeline/input/error.h"
-#include "pipeline/shot/family.h"
 #include "pipeline/input/graftal_io.h"
-#include "pipeline/output/image_io.h"
 #include "pipeline/input/imposter_io.h"
 #include "pipeline/input/json_params.h"
 #include "pipeline/input/limits.h"
 #include "pipeline/input/presets.h"
 #include "pipeline/input/scene.h"
 #include "pipeline/input/shader_io.h"
+#include "pipeline/output/contact_sheet.h"
+#include "pipeline/output/image_io.h"
 #include "pipeline/output/tree_io.h"
 #include "pipeline/output/write_file.h"
+#include "pipeline/shot/family.h"
 
 namespace pleinair {
 
@@ -200,6 +201,7 @@ int run_presets(const PresetsCommand& cmd) {
                       : cmd.reference == "shaders"   ? stroke_shader_reference()
                       : cmd.reference == "graftals"  ? graftal_reference()
                       : cmd.reference == "imposters" ? imposter_reference()
+                      : cmd.reference == "draft"     ? draft_reference()
                                                      : scene_reference());
         return 0;
     }

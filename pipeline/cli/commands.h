@@ -44,6 +44,7 @@ struct RenderCommand {
     std::optional<double> time;    // seconds into an animated scene
     std::optional<int> frame;      // or a frame of it (from 1, at the scene's fps)
     bool preview = false;          // half the resolution, as animate --preview
+    bool draft = false;            // the draft's lighter settings under the --set ones
 };
 
 struct AnimateCommand {
@@ -53,6 +54,7 @@ struct AnimateCommand {
     bool resume = false;   // keep the frames already complete, clear dead runs' temporaries
     std::string video;     // encode the frames into this .mp4 with ffmpeg
     bool preview = false;  // half resolution
+    bool draft = false;    // the draft's lighter settings under the --set ones
     bool aovs = false;
     bool explain = false;  // the shot's passes, the first frame's plan and passes
     std::vector<std::string> set;
@@ -67,6 +69,7 @@ struct BenchCommand {
     std::vector<std::string> set;
     std::string frames;        // coherence: A-B[xSTEP]; empty: the whole track
     bool preview = false;      // coherence: half the resolution
+    bool draft = false;        // coherence: the draft's settings under the --set ones
     bool per_frame = false;    // coherence: a row per frame too
     std::optional<int> frame;  // look: the frame of an animated scene (default: its first)
     std::string save;          // coherence: a frame pattern; look: an image; empty: none
@@ -82,7 +85,7 @@ struct StudioCommand {
 };
 
 struct PresetsCommand {
-    std::string reference;  // "trees", "shaders" or "scenes": print that key reference instead
+    std::string reference;  // "trees", "shaders", "scenes", ..., "draft": print that reference
 };
 
 // Each returns the process exit code; InputError and std::runtime_error propagate to main.

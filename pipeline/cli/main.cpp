@@ -138,6 +138,8 @@ Command add_render(CLI::App& app) {
                 "Print the frame's plan: passes run or skipped and why, times, counts");
     r->add_flag("--aovs", c->aovs, "Add depth, object id, alpha, lightness channels (EXR)");
     r->add_flag("--preview", c->preview, "Half resolution, as animate --preview");
+    r->add_flag("--draft", c->draft,
+                "Paint lighter for a quick look (README, \"The draft\"); --set keeps its keys");
     r->add_flag("--progress", c->progress,
                 "Report each stage and the paint's progress on stderr (always past 16 "
                 "megapixels)");
@@ -172,6 +174,8 @@ Command add_animate(CLI::App& app) {
                 "Keep frames already complete; clear temporaries left by killed runs");
     a->add_option("--video", c->video, "Also encode the frames into FILE.mp4 (ffmpeg, H.264)");
     a->add_flag("--preview", c->preview, "Half resolution, for a quick look");
+    a->add_flag("--draft", c->draft,
+                "Paint lighter for a quick look (README, \"The draft\"); --set keeps its keys");
     a->add_flag("--aovs", c->aovs, "Add depth, object id, alpha, lightness channels (EXR)");
     a->add_flag("--explain", c->explain,
                 "Print the shot's passes and the first frame's plan; after the frames, each "
@@ -206,6 +210,7 @@ Command add_bench(CLI::App& app) {
     b->add_option("--set", c->set, "Override a scene key: POINTER=VALUE");
     b->add_option("--frames", c->frames, "coherence: frames A-B[xSTEP] (default: the track's)");
     b->add_flag("--preview", c->preview, "coherence: half the resolution");
+    b->add_flag("--draft", c->draft, "coherence: painted as render --draft paints");
     b->add_flag("--per-frame", c->per_frame,
                 "coherence: also a row per frame (area and L* on and off, swaps)");
     b->add_option("--frame", c->frame,
@@ -216,6 +221,15 @@ Command add_bench(CLI::App& app) {
                   "look: write the frame measured (the pixels render and animate paint)");
 
     return {b, [=] {
+                // Options another kind reads are refused, not silently dropped.
+                if (c->what != "coherence")
+                    for (const auto& [flag, given] :
+                         {std::pair{"--preview", c->preview}, std::pair{"--draft", c->draft},
+                          std::pair{"--per-frame", c->per_frame}})
+                        if (given)
+                            throw InputError(flag, "",
+                                             std::string("only bench coherence reads ") + flag +
+                                                 ", not bench " + c->what);
                 return c->what == "coherence" ? run_bench_coherence(*c)
                        : c->what == "look"    ? run_bench_look(*c)
                                               : run_bench_accuracy(*c);
@@ -227,8 +241,9 @@ Command add_presets(CLI::App& app) {
     auto c = std::make_shared<PresetsCommand>();
     CLI::App* p = app.add_subcommand("presets", "List the shipped presets, one line each");
     p->add_option("--reference", c->reference,
-                  "Print the Markdown reference of every key of one kind of file")
-        ->check(CLI::IsMember({"trees", "shaders", "scenes", "graftals", "imposters"}));
+                  "Print the Markdown reference of every key of one kind of file, or of the "
+                  "settings --draft eases")
+        ->check(CLI::IsMember({"trees", "shaders", "scenes", "graftals", "imposters", "draft"}));
 
     return {p, [=] { return run_presets(*c); }};
 }

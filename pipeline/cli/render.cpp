@@ -7,6 +7,7 @@
 
 #include "pipeline/cli/commands.h"
 #include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/draft.h"
 #include "pipeline/input/error.h"
 #include "pipeline/input/limits.h"
 #include "pipeline/input/presets.h"
@@ -111,6 +112,7 @@ int run_render(const RenderCommand& cmd) {
     fs::path file = resolve_preset("scenes", cmd.scene, "SCENE");
     SceneDesc scene = load_scene(file, cmd.set);
     if (cmd.preview) halve_for_preview(scene, file.string());
+    if (cmd.draft) apply_draft(scene.render, cmd.set);
     check_job_memory(scene, cmd.aovs, cmd.out, 1, file.string());
     const double t = frame_time_of(cmd.time, cmd.frame, scene, file.string());
     FrameView view;

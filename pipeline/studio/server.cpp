@@ -172,6 +172,7 @@ void StudioServer::Impl::change(const httplib::Request& req, httplib::Response& 
 void StudioServer::Impl::frame(const httplib::Request& req, httplib::Response& res) {
     const uint64_t id = ++latest;
     const bool preview = req.get_param_value("preview") == "1";
+    const bool draft = req.get_param_value("draft") == "1";
     const std::lock_guard<std::mutex> lock(mutex);
     // Superseded: 204, nothing to show (the page asks again; not an error to log).
     if (latest.load() != id) {
@@ -180,8 +181,8 @@ void StudioServer::Impl::frame(const httplib::Request& req, httplib::Response& r
     }
     try {
         const std::optional<int> f = frame_param(req, *workspace);
-        StudioFrame painted =
-            workspace->paint(f, preview, [this, id] { return latest.load() != id; });
+        StudioFrame painted = workspace->paint(
+            f, preview, [this, id] { return latest.load() != id; }, draft);
         // Previews travel as JPEG: a 480x270 frame encodes in about a millisecond and a tenth of
         // the PNG's bytes. At rest, PNG: the exact pixels the shown command writes.
         const bool jpeg = preview || req.get_param_value("format") == "jpeg";
@@ -194,7 +195,7 @@ void StudioServer::Impl::frame(const httplib::Request& req, httplib::Response& r
         std::snprintf(ms, sizeof ms, "%.1f %.1f", painted.build_ms, painted.paint_ms);
         res.set_header("X-Pleinair-Ms", ms);
         res.set_header("X-Pleinair-Command",
-                       header_safe(workspace->command_line(f, preview, "still.png")));
+                       header_safe(workspace->command_line(f, preview, "still.png", draft)));
         res.set_header("Cache-Control", "no-store");
         res.set_content(bytes, jpeg ? "image/jpeg" : "image/png");
     } catch (const FrameAbandoned&) {

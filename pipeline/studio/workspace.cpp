@@ -12,6 +12,7 @@
 #include "pipeline/frame/frame_plan.h"
 #include "pipeline/frame/frame_view.h"
 #include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/draft.h"
 #include "pipeline/input/error.h"
 #include "pipeline/input/json_params.h"
 #include "pipeline/input/presets.h"
@@ -296,7 +297,7 @@ void Workspace::rebuild(bool for_preview, StudioFrame& out) {
 }
 
 StudioFrame Workspace::paint(std::optional<int> frame, bool preview,
-                             const std::function<bool()>& abandon) {
+                             const std::function<bool()>& abandon, bool draft) {
     StudioFrame out;
     if (frame && !scene_.animated()) throw InputError("frame", "", "a still has no frames");
     rebuild(preview, out);
@@ -314,6 +315,11 @@ StudioFrame Workspace::paint(std::optional<int> frame, bool preview,
         view = view_at(scene_, t);
     }
     FrameSettings settings = scene_frame_settings(shot_->scene);
+    if (draft) {
+        std::vector<std::string> sets;
+        for (const auto& [p, v] : sets_) sets.push_back(p + "=" + v);
+        apply_draft(settings.render, sets);
+    }
     settings.abandon = abandon;
     settings.buffers = &buffers_;
     settings.seen_memo = &seen_;
@@ -324,12 +330,13 @@ StudioFrame Workspace::paint(std::optional<int> frame, bool preview,
     return out;
 }
 
-std::string Workspace::command_line(std::optional<int> frame, bool preview,
-                                    const std::string& out) const {
+std::string Workspace::command_line(std::optional<int> frame, bool preview, const std::string& out,
+                                    bool draft) const {
     std::string cmd = "pleinair render " + shell_quote(scene_arg_);
     for (const auto& [p, v] : sets_) cmd += " --set " + shell_quote(p + "=" + v);
     if (frame) cmd += " --frame " + std::to_string(*frame);
     if (preview) cmd += " --preview";
+    if (draft) cmd += " --draft";
     return cmd + " -o " + shell_quote(out);
 }
 

@@ -78,17 +78,19 @@ class Workspace {
     // Whether the scene has a camera or sun track, and its frames.
     bool animated() const;
 
-    // The command that paints exactly the picture `paint(frame, preview)` gives at rest,
-    // quoted for a POSIX shell.
-    std::string command_line(std::optional<int> frame, bool preview, const std::string& out) const;
+    // The command that paints exactly the picture `paint(frame, preview, {}, draft)` gives at
+    // rest, quoted for a POSIX shell.
+    std::string command_line(std::optional<int> frame, bool preview, const std::string& out,
+                             bool draft = false) const;
 
     // Paints frame `frame` of a shot (nullopt: a still, or a shot's first frame) at full size
     // or, `preview`, at half (as render --preview). A preview while only the camera changed
     // paints from the shot already built (StudioFrame::exact false); anything else first
     // rebuilds what the changes since the last paint reached. `abandon` is asked between
-    // stages (FrameAbandoned).
+    // stages (FrameAbandoned). `draft` paints it as render --draft does (draft.h), the
+    // overrides' own keys kept.
     StudioFrame paint(std::optional<int> frame, bool preview,
-                      const std::function<bool()>& abandon = {});
+                      const std::function<bool()>& abandon = {}, bool draft = false);
     // Empties what frames painted one after another share (done at every change): the next
     // frame is painted as if alone, the same bytes (benchmarks, for the ratio).
     void forget_frames();

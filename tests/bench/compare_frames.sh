@@ -3,8 +3,8 @@
 # "Frames that cost what they show" measures them:
 #   tests/bench/compare_frames.sh BINARY...
 # Median ms a frame over frames 20-27 of each walk at 480x270, at the walks' preview size
-# (640x360) and at 1920x1080, for each binary; the last one again with strokes thinned under
-# 6 px at the two small sizes.
+# (640x360) and at 1920x1080, for each binary; the last one again as a draft (--draft) at the
+# two small sizes.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 out=$(mktemp -d)
@@ -22,7 +22,7 @@ for shot in forest-edge-walk mortefontaine-walk; do
             line="$shot ${w}x${h} run $rep:"
             for bin in "$@"; do line="$line $(run "$bin" "$shot" "$w" "$h")"; done
             if [ "$w" != 1920 ]; then
-                line="$line thinned $(run "$last" "$shot" "$w" "$h" --set /render/thin_below_px=6)"
+                line="$line draft $(run "$last" "$shot" "$w" "$h" --draft)"
             fi
             echo "$line"
         done

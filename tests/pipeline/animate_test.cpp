@@ -101,6 +101,29 @@ TEST_F(Animate, ChunksSingleFramesAndAWholeRunGiveTheSameBytes) {
     EXPECT_EQ(read_file(dir_ / "timed.png"), frame("whole", 5));
 }
 
+// --draft: lighter settings, the same frame from either command, and the user's own --set kept
+// over the draft's (all four given back their defaults paint the full frame).
+TEST_F(Animate, DraftFramesAreTheRenderDraftFramesAndYieldToTheUsersSets) {
+    const fs::path s = scene(walk_scene(kWalk, 96, 64, kCircles));
+    ASSERT_EQ(animate(s, "full", "--frames 2-3").exit_code, 0);
+    auto draft = animate(s, "draft", "--frames 2-3 --draft");
+    ASSERT_EQ(draft.exit_code, 0) << draft.err;
+    EXPECT_NE(frame("draft", 3), frame("full", 3));
+    auto still = run_pleinair("render " + s.string() + " --draft --frame 3 -o " +
+                              (dir_ / "still.png").string());
+    ASSERT_EQ(still.exit_code, 0) << still.err;
+    EXPECT_EQ(read_file(dir_ / "still.png"), frame("draft", 3));
+    const std::string defaults =
+        " --set /render/samples=4 --set /render/thin_below_px=0"
+        " --set /render/coverage_cutoff=0.00048828125 --set /render/reflection_frames=4";
+    ASSERT_EQ(animate(s, "undone", "--frames 2-3 --draft" + defaults).exit_code, 0);
+    EXPECT_EQ(frame("undone", 3), frame("full", 3));
+    // Only the coherence bench reads --draft among the bench kinds.
+    auto bench = run_pleinair("bench look " + s.string() + " --draft");
+    EXPECT_EQ(bench.exit_code, 2);
+    EXPECT_NE(bench.err.find("--draft"), std::string::npos) << bench.err;
+}
+
 TEST_F(Animate, AStillCameraGivesIdenticalFrames) {
     const fs::path s =
         scene(walk_scene(R"([{"time": 0, "position": [0, 2.5, 30], "look_at": [4, 5, 0]},

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "generators/tree.h"
+#include "pipeline/input/draft.h"
 #include "pipeline/input/error.h"
 #include "pipeline/input/graftal_io.h"
 #include "pipeline/input/imposter_io.h"
@@ -278,8 +279,9 @@ TEST(Presets, SavedPresetLoadsBackToTheSameTree) {
 
 TEST(Presets, ReadmeReferenceMatchesTheKeyTable) {
     std::string readme = test::read_file(test::source_dir() / "README.md");
-    for (const std::string& table : {tree_params_reference(), stroke_shader_reference(),
-                                     scene_reference(), graftal_reference(), imposter_reference()})
+    for (const std::string& table :
+         {tree_params_reference(), stroke_shader_reference(), scene_reference(),
+          graftal_reference(), imposter_reference(), draft_reference()})
         EXPECT_NE(readme.find(table), std::string::npos)
             << "README.md's key reference is stale; regenerate it with `make reference`";
 }

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "pipeline/frame/frame_plan.h"
+#include "pipeline/input/draft.h"
 #include "pipeline/input/error.h"
 #include "pipeline/studio/server.h"
 #include "pipeline/studio/workspace.h"
@@ -170,6 +171,25 @@ TEST(Studio, ASupersededFrameIsAbandonedBetweenStages) {
     EXPECT_EQ(asked, 3);
     // The workspace is whole: the next frame is the one a fresh build paints.
     EXPECT_EQ(ws.paint(std::nullopt, true).frame.rgba, fresh(ws, true).rgba);
+}
+
+// A draft preview is the frame the draft's settings paint as overrides, the user's own kept,
+// and the command the page shows says --draft.
+TEST(Studio, DraftPreviewsPaintTheDraftsSettingsUnderTheUsersOwn) {
+    const std::string file = two_family_scene().string();
+    std::vector<std::string> drafted;
+    for (const DraftSetting& d : draft_settings())
+        drafted.push_back(std::string(d.pointer) + "=" + d.value);
+    Workspace ws(file);
+    const Frame draft = ws.paint(std::nullopt, true, {}, true).frame;
+    EXPECT_NE(draft.rgba, ws.paint(std::nullopt, true).frame.rgba);
+    EXPECT_EQ(draft.rgba, Workspace(file, drafted).paint(std::nullopt, true).frame.rgba);
+    EXPECT_EQ(ws.command_line(std::nullopt, true, "a.png", true),
+              "pleinair render " + file + " --preview --draft -o a.png");
+    ws.set("/render/samples", "4");
+    drafted[0] = "/render/samples=4";
+    EXPECT_EQ(ws.paint(std::nullopt, true, {}, true).frame.rgba,
+              Workspace(file, drafted).paint(std::nullopt, true).frame.rgba);
 }
 
 TEST(Studio, TheCommandLineNamesEveryOverride) {

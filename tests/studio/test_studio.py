@@ -6,7 +6,8 @@ control changes the picture, and the picture equals what the command the page sh
 (pixel for pixel, through idiff); turning the camera changes it; "keep" writes a preset that
 `pleinair tree` reads back to the same tree; a bad value puts the command line's message beside
 its control and keeps the last picture; requests from another origin or host, and oversized
-ones, are refused; a shot scrubs along its timeline. Screenshots go to --artifacts.
+ones, are refused; a shot scrubs along its timeline, its previews drafts by default. Screenshots
+go to --artifacts.
 
 Run by `make test-studio`: /usr/bin/python3 tests/studio/test_studio.py --pleinair build/pleinair
 """
@@ -336,6 +337,12 @@ def test_shot(pleinair, artifacts, work):
         painted = os.path.join(work, "shot-painted.png")
         run_command(pleinair, command, painted, work)
         check(same_pixels(after, painted)[0], "the shot's frame equals render --frame's")
+        check(d.find_element(By.ID, "draft").is_selected(), "draft previews are on by default")
+        req = urllib.request.Request(studio.url + "api/frame?preview=1&draft=1&frame=21")
+        with OPENER.open(req, timeout=120) as r:
+            status, drafted = r.status, r.headers.get("X-Pleinair-Command", "")
+        check(status == 200 and "--preview --draft" in drafted,
+              f"a draft preview is painted ({status}) and its command says --draft: {drafted}")
         d.find_element(By.ID, "circles").click()
         d.find_element(By.ID, "explain").click()
         WebDriverWait(d, 30).until(

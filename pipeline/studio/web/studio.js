@@ -104,6 +104,7 @@ async function showFrameFromServer(preview, my) {
   if (my !== state.frameSeq) return;
   if (!ok) return;  // refused: the last good picture stays, the message beside the control
   let url = '/api/frame?preview=' + (preview ? 1 : 0);
+  if (preview && $('draft').checked) url += '&draft=1';
   if (state.frame !== null) url += '&frame=' + state.frame;
   const t0 = performance.now();
   let r;
