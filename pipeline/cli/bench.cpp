@@ -54,6 +54,7 @@ int run_bench_accuracy(const BenchCommand& cmd) {
     // scene's density).
     SceneDesc ref = scene;
     ref.render.samples = 16;
+    ref.render.sky_one_sample_px = 0;  // the sky at 16 too
     ref.render.octaves = 8;
     ref.render.palette_lut = false;
     ref.render.edge_lut = false;
@@ -87,6 +88,12 @@ int run_bench_accuracy(const BenchCommand& cmd) {
         {"coverage cutoff", "1/2048", [](SceneDesc& s) { s.render.coverage_cutoff = 1.0f / 2048; }},
         {"coverage cutoff", "1/256", [](SceneDesc& s) { s.render.coverage_cutoff = 1.0f / 256; }},
     };
+    if (scene.sky.present) {
+        rows.push_back({"sky strokes", "every one at the samples above",
+                        [](SceneDesc& s) { s.render.sky_one_sample_px = 0; }});
+        rows.push_back({"sky strokes", "over 24 px at one sample, filtered",
+                        [](SceneDesc& s) { s.render.sky_one_sample_px = 24; }});
+    }
     if (scene.sun_casts_shadows) {
         rows.push_back({"shadows", "none", [](SceneDesc& s) { s.sun_casts_shadows = false; }});
         rows.push_back({"shadows", "per particle, threshold at 1/2", [](SceneDesc& s) {

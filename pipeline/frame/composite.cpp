@@ -206,11 +206,13 @@ struct TilePainter {
     const FramePlan& plan;
     const RenderSettings& rs;
     Frame& frame;
-    int n;  // samples per pixel axis
+    int n;  // samples per pixel axis: the sprite's (paint), from the frame's
     TileLayer& layer;
     StrokeLayer& out;
     const PigmentTable* pigments = nullptr;  // pigment mixing
     const CanvasWeave* canvas = nullptr;     // a canvas weave catching the strokes' edges
+    int frame_n = 1;                         // the settings' samples per pixel axis
+    float one_sample_px = 0;                 // paint_strokes' rule for large strokes
     uint64_t fragments = 0;
 
     // Adds a stroke's colour at pixel li with weight w: in linear RGB, or as paint (its
@@ -417,6 +419,7 @@ struct TilePainter {
         const Sprite& sp = set.sprites[idx];
         if (sp.kind == SpriteKind::kGraftal) return paint_patch(idx);
         const SpriteMaterial& m = shot.materials[sp.material];
+        n = one_sample_px > 0 && std::min(sp.half_w, sp.half_l) >= one_sample_px ? 1 : frame_n;
         const SpriteSpan r =
             sprite_span(sp, layer.x0, layer.y0, layer.x0 + layer.w, layer.y0 + layer.h);
         // Hidden here by nearer strokes: nothing to build or shade.
@@ -545,7 +548,7 @@ Frame make_frame(const Camera& cam, bool aovs, BufferPool* pool) {
 StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins& bins,
                           const FramePlan& plan, const RenderSettings& rs, Frame& frame,
                           const std::function<void(const char*, double)>* progress,
-                          const StrokeLayer* behind, BufferPool* pool) {
+                          const StrokeLayer* behind, BufferPool* pool, float one_sample_px) {
     StrokeLayer out;
     out.width = frame.width, out.height = frame.height;
     out.cutoff = rs.coverage_cutoff;
@@ -598,8 +601,9 @@ StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins
             pool.resize(TileLayer::kHeld * kTile * kTile);
             layer->make_soft(0.5f * rs.order_blend_frames, speed_max, pool.data());
         }
-        TilePainter painter{shot, set,    plan, rs,       frame,
-                            n,    *layer, out,  pigments, plan.canvas ? &weave : nullptr};
+        TilePainter painter{shot, set,          plan, rs,       frame,
+                            n,    *layer,       out,  pigments, plan.canvas ? &weave : nullptr,
+                            n,    one_sample_px};
         for (auto it = bin.rbegin(); it != bin.rend(); ++it) {
             const Sprite& sp = set.sprites[*it];
             layer->range = sp.range;

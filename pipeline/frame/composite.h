@@ -50,11 +50,14 @@ struct StrokeLayer {
 // `progress`, when set, hears ("paint", done) at each whole percent of the tiles.
 // `behind`, when set, is a layer these strokes lie behind: they are painted only where it
 // leaves light through (the painted sky behind every other stroke). The layer's colour and light
-// come from `pool` when given (give_back returns them).
+// come from `pool` when given (give_back returns them). A stroke whose narrower half-width on
+// screen is at least `one_sample_px` (0: none) is painted at one sample a pixel, its feather
+// filtered, whatever settings.samples says: large soft strokes (the sky's) need no more.
 StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& sprites, const TileBins& bins,
                           const FramePlan& plan, const RenderSettings& settings, Frame& frame,
                           const std::function<void(const char*, double)>* progress = nullptr,
-                          const StrokeLayer* behind = nullptr, BufferPool* pool = nullptr);
+                          const StrokeLayer* behind = nullptr, BufferPool* pool = nullptr,
+                          float one_sample_px = 0.0f);
 // The layer's colour and light handed to `pool` (none: nothing happens).
 void give_back(StrokeLayer& layer, BufferPool* pool);
 

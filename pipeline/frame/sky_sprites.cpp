@@ -116,7 +116,7 @@ SkyLayer sky_stage(const FrameContext& ctx, const StrokeLayer& strokes, Frame& f
     const TileBins bins =
         bin_sprites(sky.sprites.sprites, depth_order(sky.sprites.sprites), cam.width, cam.height);
     sky.layer = paint_strokes(ctx.shot, sky.sprites, bins, sky_plan, ctx.render(), frame, nullptr,
-                              &strokes, ctx.settings.buffers);
+                              &strokes, ctx.settings.buffers, ctx.render().sky_one_sample_px);
     ctx.report.sky_sprites = sky.sprites.sprites.size();
     ctx.report.fragments += sky.layer.fragments;
     phase.done(

@@ -375,6 +375,11 @@ void visit_scene(SceneDesc& s, V& v) {
                "perspective (thesis ch. I: brush strokes must not shrink like geometry).");
         v.real("min_stroke_px", r.min_stroke_px, {0, 1000}, "px", "Smallest stroke drawn.");
         v.integer("samples", r.samples, {1, 16}, "Stroke-mask samples per pixel: 1, 4 or 16.");
+        v.real("sky_one_sample_px", r.sky_one_sample_px, {0, 1000}, "px",
+               "Painted sky strokes at least this wide on screen (their narrower half-width) "
+               "take one stroke-mask sample a pixel, the feather filtered by the pixel's "
+               "footprint: large and soft, they need no more (BENCHMARKS.md, \"The sky's large "
+               "strokes at one sample\"); 0: every sky stroke takes `samples`.");
         v.integer("octaves", r.octaves, {1, 8}, "Octaves of the stroke noise.");
         v.boolean("palette_lut", r.palette_lut,
                   "Tabulate each sprite's colours (palette, tint, atmosphere) against its "

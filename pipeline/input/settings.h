@@ -28,10 +28,13 @@ struct RenderSettings {
     float stroke_perspective = 0.6f;  // 0: strokes keep their screen size, 1: true perspective
     float min_stroke_px = 1.5f;       // no stroke is drawn smaller
     int samples = 4;                  // stroke-mask samples per pixel: 1, 4 or 16
-    int octaves = 1;                  // stroke-noise octaves
-    bool palette_lut = true;          // colours from a per-sprite table instead of per fragment
-    bool edge_lut = true;             // the edge mask from a table instead of sin and pow
-    bool filter_strokes = true;       // at 1 sample per pixel, widen the feather by its footprint
+    // Sky strokes at least this wide on screen (the narrower half-width, px) take one sample a
+    // pixel, the feather filtered; 0: all take `samples`.
+    float sky_one_sample_px = 24.0f;
+    int octaves = 1;             // stroke-noise octaves
+    bool palette_lut = true;     // colours from a per-sprite table instead of per fragment
+    bool edge_lut = true;        // the edge mask from a table instead of sin and pow
+    bool filter_strokes = true;  // at 1 sample per pixel, widen the feather by its footprint
     ShadowMode shadows = ShadowMode::kTransmissive;
     ShadowSamples shadow_samples = ShadowSamples::kParticle;
     float underpaint_scale = 0.5f;  // underpainting resolution over the image's
