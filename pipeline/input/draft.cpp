@@ -5,15 +5,6 @@ namespace pleinair {
 
 namespace {
 
-// The draft's values, by hand (each is also a documented scene key, range-checked where the
-// scene is parsed; these lie inside those ranges).
-void set_draft_value(RenderSettings& r, const std::string& pointer) {
-    if (pointer == "/render/samples") r.samples = 1;
-    if (pointer == "/render/thin_below_px") r.thin_below_px = 6.0f;
-    if (pointer == "/render/coverage_cutoff") r.coverage_cutoff = 0.01f;
-    if (pointer == "/render/reflection_frames") r.reflection_frames = 8;
-}
-
 // Whether "POINTER=VALUE" sets `pointer` or an object holding it ("/render" does).
 bool names(const std::string& set, const std::string& pointer) {
     const std::string p = set.substr(0, set.find('='));
@@ -26,16 +17,16 @@ bool names(const std::string& set, const std::string& pointer) {
 
 const std::vector<DraftSetting>& draft_settings() {
     static const std::vector<DraftSetting> all = {
-        {"/render/samples", "1",
-         "one stroke-mask sample a pixel, the feather widened by the pixel's footprint: edges a "
-         "little softer"},
-        {"/render/thin_below_px", "6",
+        {"/render/samples", "1", [](RenderSettings& r) { r.samples = 1; },
+         "one stroke-mask sample a pixel, the feather widened by the pixel's footprint instead "
+         "of supersampled: the strokes' edges a little harder"},
+        {"/render/thin_below_px", "6", [](RenderSettings& r) { r.thin_below_px = 6.0f; },
          "strokes drawn narrower than 6 px thinned at random, the survivors grown to keep their "
          "area: far crowns in fewer, larger strokes"},
-        {"/render/coverage_cutoff", "0.01",
+        {"/render/coverage_cutoff", "0.01", [](RenderSettings& r) { r.coverage_cutoff = 0.01f; },
          "a pixel stops taking strokes once 1% of the light gets through: the sky's stroke field "
          "a shade bluer where it shows through crowns"},
-        {"/render/reflection_frames", "8",
+        {"/render/reflection_frames", "8", [](RenderSettings& r) { r.reflection_frames = 8; },
          "a moving camera's water mirrors traced every 8th frame, interpolated between"},
     };
     return all;
@@ -45,7 +36,7 @@ void apply_draft(RenderSettings& r, const std::vector<std::string>& sets) {
     for (const DraftSetting& d : draft_settings()) {
         bool user = false;
         for (const std::string& s : sets) user |= names(s, d.pointer);
-        if (!user) set_draft_value(r, d.pointer);
+        if (!user) d.set(r);
     }
 }
 

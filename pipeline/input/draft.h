@@ -9,11 +9,12 @@
 
 namespace pleinair {
 
-// One setting the draft eases: its scene key, its draft value as --set would write it, and
-// what the picture gives for the time saved.
+// One setting the draft eases: its scene key, its draft value as --set would write it (and
+// setting it, beside it), and what the picture gives for the time saved.
 struct DraftSetting {
     const char* pointer;
     const char* value;
+    void (*set)(RenderSettings&);
     const char* why;
 };
 
