@@ -54,7 +54,8 @@ int run_bench_accuracy(const BenchCommand& cmd) {
     // scene's density).
     SceneDesc ref = scene;
     ref.render.samples = 16;
-    ref.render.sky_one_sample_px = 0;  // the sky at 16 too
+    ref.render.one_sample_px = 0;      // every stroke at 16
+    ref.render.sky_one_sample_px = 0;  // the sky's too
     ref.render.octaves = 8;
     ref.render.palette_lut = false;
     ref.render.edge_lut = false;
@@ -88,12 +89,25 @@ int run_bench_accuracy(const BenchCommand& cmd) {
         {"coverage cutoff", "1/2048", [](SceneDesc& s) { s.render.coverage_cutoff = 1.0f / 2048; }},
         {"coverage cutoff", "1/256", [](SceneDesc& s) { s.render.coverage_cutoff = 1.0f / 256; }},
     };
+    rows.push_back({"large strokes", "every one at the samples above",
+                    [](SceneDesc& s) { s.render.one_sample_px = 0; }});
+    // The filter widens only the feathers of strokes at one sample: the reference's others keep
+    // theirs.
+    rows.push_back(
+        {"large strokes", "at least 16 px across at one sample, filtered",
+         [](SceneDesc& s) { s.render.one_sample_px = 8, s.render.filter_strokes = true; }});
+    rows.push_back({"large strokes", "at least 32 px across at one sample, filtered (the default)",
+                    [](SceneDesc& s) {
+                        s.render.one_sample_px = RenderSettings{}.one_sample_px;
+                        s.render.filter_strokes = true;
+                    }});
     if (scene.sky.present) {
         rows.push_back({"sky strokes", "every one at the samples above",
                         [](SceneDesc& s) { s.render.sky_one_sample_px = 0; }});
         rows.push_back(
             {"sky strokes", "large ones at one sample, filtered (the default)", [](SceneDesc& s) {
                  s.render.sky_one_sample_px = RenderSettings{}.sky_one_sample_px;
+                 s.render.filter_strokes = true;
              }});
     }
     if (scene.sun_casts_shadows) {

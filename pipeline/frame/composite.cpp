@@ -678,10 +678,18 @@ StrokeLayer paint_stage(const FrameContext& ctx, const SpriteSet& sprites, const
                         Frame& frame) {
     StagePhase phase(ctx, "paint", true);
     StrokeLayer strokes = paint_strokes(ctx.shot, sprites, bins, ctx.plan, ctx.render(), frame,
-                                        &ctx.settings.progress, nullptr, ctx.settings.buffers);
+                                        &ctx.settings.progress, nullptr, ctx.settings.buffers,
+                                        ctx.render().one_sample_px);
     ctx.report.fragments = strokes.fragments;
-    phase.done("strokes front to back, tiles in parallel, each until it is covered",
-               std::to_string(strokes.fragments) + " fragments");
+    std::string what = std::to_string(strokes.fragments) + " fragments";
+    if (const float px = ctx.render().one_sample_px; px > 0) {
+        size_t large = 0;
+        for (const Sprite& sp : sprites.sprites)
+            large += sp.kind != SpriteKind::kGraftal && std::min(sp.half_w, sp.half_l) >= px;
+        what += "; " + std::to_string(large) + " strokes at least " + std::to_string(int(2 * px)) +
+                " px across at one sample, the feather filtered";
+    }
+    phase.done("strokes front to back, tiles in parallel, each until it is covered", what);
     return strokes;
 }
 

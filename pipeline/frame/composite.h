@@ -52,7 +52,8 @@ struct StrokeLayer {
 // leaves light through (the painted sky behind every other stroke). The layer's colour and light
 // come from `pool` when given (give_back returns them). A stroke whose narrower half-width on
 // screen is at least `one_sample_px` (0: none) is painted at one sample a pixel, its feather
-// filtered, whatever settings.samples says: large soft strokes (the sky's) need no more.
+// filtered, whatever settings.samples says: a large stroke's noise spans pixels, and the filter
+// stands in for the samples.
 StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& sprites, const TileBins& bins,
                           const FramePlan& plan, const RenderSettings& settings, Frame& frame,
                           const std::function<void(const char*, double)>* progress = nullptr,

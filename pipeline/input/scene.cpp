@@ -375,6 +375,13 @@ void visit_scene(SceneDesc& s, V& v) {
                "perspective (thesis ch. I: brush strokes must not shrink like geometry).");
         v.real("min_stroke_px", r.min_stroke_px, {0, 1000}, "px", "Smallest stroke drawn.");
         v.integer("samples", r.samples, {1, 16}, "Stroke-mask samples per pixel: 1, 4 or 16.");
+        v.real("one_sample_px", r.one_sample_px, {0, 1000}, "px",
+               "Strokes whose narrower half-width on screen is at least this (so at least twice "
+               "this across), leaves, bark, ground, rocks and water, take one stroke-mask "
+               "sample a pixel, the feather filtered by the pixel's footprint: "
+               "their noise's features span several pixels, so the filter stands in for the "
+               "samples (BENCHMARKS.md, \"Large strokes at one sample\"); 0: every stroke "
+               "takes `samples`.");
         v.real("sky_one_sample_px", r.sky_one_sample_px, {0, 1000}, "px",
                "Painted sky strokes at least this wide on screen (their narrower half-width) "
                "take one stroke-mask sample a pixel, the feather filtered by the pixel's "

@@ -31,6 +31,8 @@ struct RenderSettings {
     // Sky strokes at least this wide on screen (the narrower half-width, px) take one sample a
     // pixel, the feather filtered; 0: all take `samples`.
     float sky_one_sample_px = 24.0f;
+    // The same for the scene's own strokes (leaves, bark, ground, rocks, water).
+    float one_sample_px = 16.0f;
     int octaves = 1;             // stroke-noise octaves
     bool palette_lut = true;     // colours from a per-sprite table instead of per fragment
     bool edge_lut = true;        // the edge mask from a table instead of sin and pow

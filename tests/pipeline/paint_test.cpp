@@ -273,7 +273,12 @@ TEST(PaintHardCases, SpriteLargerThanTheScreenAndZeroSizeSprites) {
     Frame f = paint_hand(s, {hand_tree({{0, 6, 38}})}, &rep);
     expect_finite(f);
     EXPECT_EQ(rep.leaf_sprites, 1u);
-    EXPECT_GT(rep.fragments, 96u * 64u);  // clipped to the screen, every pixel sampled
+    // Clipped to the screen, every pixel sampled, once: a stroke that large takes one sample.
+    EXPECT_EQ(rep.fragments, 96u * 64u);
+    s.render.one_sample_px = 0;  // and the scene's samples, 4 a pixel, otherwise
+    rep = {};
+    f = paint_hand(s, {hand_tree({{0, 6, 38}})}, &rep);
+    EXPECT_EQ(rep.fragments, 4u * 96u * 64u);
     s.families[0].leaf_shader.sprite_size = 0;
     s.render.min_stroke_px = 0;
     rep = {};
