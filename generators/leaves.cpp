@@ -96,6 +96,7 @@ LeafParticles emit_leaves(const TreeMesh& tm, const TreeParams& params, uint64_t
     // place in the list, so adding a branch relabels no other leaf.
     std::vector<uint64_t> label_key;
     label_key.reserve(most);
+    out.limb.reserve(most);
     for (const Emitter& e : emitters) {
         const Limb& L = *e.limb;
         Rng rng = make_rng(seed, Purpose::kLeafGrow, e.key);
@@ -135,6 +136,7 @@ LeafParticles emit_leaves(const TreeMesh& tm, const TreeParams& params, uint64_t
             out.normal.push_back(glm::vec3(dir));
             g_start.push_back(gs);
             g_len.push_back(gl);
+            out.limb.push_back(static_cast<uint32_t>(e.limb - tm.limbs.data()));
         }
     }
 

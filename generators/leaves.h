@@ -22,6 +22,7 @@ struct LeafParticles {
     std::vector<uint32_t> tree_id;       // seeds the per-tree tint
     std::vector<float> fade_begin;       // distance value where the particle starts to fade
     std::vector<float> fade_end;         // ... and where it is gone (> 1: it never is)
+    std::vector<uint32_t> limb;          // the limb its twig grows from (Tree::branches index)
 
     size_t size() const { return position.size(); }
 };

@@ -120,20 +120,7 @@ namespace {
 int paint_sheet(const FamilyCommand& cmd, const TreeParams& params, const std::string& name) {
     using Clock = std::chrono::steady_clock;
     auto t0 = Clock::now();
-    Family family;
-    family.name = name;
-    family.preset = cmd.preset;
-    family.params = params;
-    ShaderPreset leaves = load_shader_preset("corot-leaves");
-    ShaderPreset bark = load_shader_preset("corot-bark");
-    family.leaf_shader = leaves.params;
-    family.bark_shader = bark.params;
-    family.leaf_palette = shader_palette(load_palette(leaves.palette), leaves.params);
-    family.bark_palette = shader_palette(load_palette(bark.palette), bark.params);
-    if (cmd.style != "strokes") {
-        family.style = cmd.style;
-        family.graftal = std::make_shared<const GraftalDesc>(load_graftal(cmd.style, "--style"));
-    }
+    const Family family = sheet_family(name, cmd.preset, params, cmd.style);
     std::vector<Tree> trees = generate_family(params, cmd.seed, cmd.count);
     auto ms = [](Clock::time_point a) {
         return std::chrono::duration<double, std::milli>(Clock::now() - a).count();

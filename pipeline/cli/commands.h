@@ -63,9 +63,9 @@ struct AnimateCommand {
 };
 
 struct BenchCommand {
-    std::string what;  // "accuracy", "coherence" or "look"
-    std::string scene;
-    int repeat = 3;  // renders per setting; the median time is reported
+    std::string what;   // "accuracy", "coherence", "look" or "trees"
+    std::string scene;  // trees: a tree preset, or "all"
+    int repeat = 3;     // renders per setting; the median time is reported
     std::vector<std::string> set;
     std::string frames;        // coherence: A-B[xSTEP]; empty: the whole track
     bool preview = false;      // coherence: half the resolution
@@ -73,6 +73,9 @@ struct BenchCommand {
     bool per_frame = false;    // coherence: a row per frame too
     std::optional<int> frame;  // look: the frame of an animated scene (default: its first)
     std::string save;          // coherence: a frame pattern; look: an image; empty: none
+    int members = 6;           // trees: members measured per family
+    uint64_t seed = 1;         // trees: the first member's seed
+    int cell_width = 480, cell_height = 540;  // trees: the side view's size
 };
 
 struct StudioCommand {
@@ -97,6 +100,7 @@ int run_animate(const AnimateCommand& cmd);
 int run_bench_accuracy(const BenchCommand& cmd);
 int run_bench_coherence(const BenchCommand& cmd);
 int run_bench_look(const BenchCommand& cmd);
+int run_bench_trees(const BenchCommand& cmd);
 int run_studio(const StudioCommand& cmd);
 
 struct SceneDesc;

@@ -201,10 +201,14 @@ Command add_bench(CLI::App& app) {
     b->add_option("what", c->what,
                   "What to measure: accuracy (each quality setting's time and error), "
                   "coherence (flicker, pops, order swaps, silhouette of an animated shot), look "
-                  "(brush texture of the sky against the trees, banding, water's mirror)")
+                  "(brush texture of the sky against the trees, banding, water's mirror), trees "
+                  "(each tree family's form from the side: crown proportions, clear trunk, "
+                  "droop, clumps, sky in the crown)")
         ->required()
-        ->check(CLI::IsMember({"accuracy", "coherence", "look"}));
-    b->add_option("scene", c->scene, "Scene name or JSON file")->required();
+        ->check(CLI::IsMember({"accuracy", "coherence", "look", "trees"}));
+    b->add_option("scene", c->scene,
+                  "Scene name or JSON file; for trees, a tree preset or file, or all")
+        ->required();
     b->add_option("--repeat", c->repeat, "Renders per setting (median time reported)")
         ->check(CLI::Range(1, 1000));
     b->add_option("--set", c->set, "Override a scene key: POINTER=VALUE");
@@ -219,6 +223,14 @@ Command add_bench(CLI::App& app) {
     b->add_option("--save", c->save,
                   "coherence: write each frame as planned (a pattern with #, as animate's -o); "
                   "look: write the frame measured (the pixels render and animate paint)");
+    CLI::Option* members = b->add_option("--members", c->members, "trees: members per family")
+                               ->check(CLI::Range(1, 64));
+    CLI::Option* seed = b->add_option("--seed", c->seed, "trees: the first member's seed")
+                            ->check(whole_number(UINT64_MAX));
+    CLI::Option* width = b->add_option("--width", c->cell_width, "trees: the side view's width")
+                             ->check(CLI::Range(64, 4096));
+    CLI::Option* height = b->add_option("--height", c->cell_height, "trees: the side view's height")
+                              ->check(CLI::Range(64, 4096));
 
     return {b, [=] {
                 // Options another kind reads are refused, not silently dropped.
@@ -230,8 +242,22 @@ Command add_bench(CLI::App& app) {
                             throw InputError(flag, "",
                                              std::string("only bench coherence reads ") + flag +
                                                  ", not bench " + c->what);
+                if (c->what != "trees")
+                    for (const CLI::Option* o : {members, seed, width, height})
+                        if (o->count())
+                            throw InputError(o->get_name(), "",
+                                             "only bench trees reads " + o->get_name() +
+                                                 ", not bench " + c->what);
+                if (c->what == "trees")
+                    for (const auto& [flag, given] : {std::pair{"--frames", !c->frames.empty()},
+                                                      std::pair{"--frame", c->frame.has_value()},
+                                                      std::pair{"--save", !c->save.empty()}})
+                        if (given)
+                            throw InputError(flag, "",
+                                             std::string("bench trees does not read ") + flag);
                 return c->what == "coherence" ? run_bench_coherence(*c)
                        : c->what == "look"    ? run_bench_look(*c)
+                       : c->what == "trees"   ? run_bench_trees(*c)
                                               : run_bench_accuracy(*c);
             }};
 }

@@ -11,6 +11,9 @@
 #include <string>
 
 #include "generators/quad_mesh.h"
+#include "pipeline/input/graftal_io.h"
+#include "pipeline/input/presets.h"
+#include "pipeline/input/shader_io.h"
 #include "shading/portable_math.h"
 
 namespace pleinair {
@@ -55,6 +58,56 @@ void draw_label(Frame& f, int x0, int y0, const std::string& text, int scale) {
 
 }  // namespace
 
+Family sheet_family(const std::string& name, const std::string& preset, const TreeParams& params,
+                    const std::string& style) {
+    Family family;
+    family.name = name;
+    family.preset = preset;
+    family.params = params;
+    ShaderPreset leaves = load_shader_preset("corot-leaves");
+    ShaderPreset bark = load_shader_preset("corot-bark");
+    family.leaf_shader = leaves.params;
+    family.bark_shader = bark.params;
+    family.leaf_palette = shader_palette(load_palette(leaves.palette), leaves.params);
+    family.bark_palette = shader_palette(load_palette(bark.palette), bark.params);
+    if (style != "strokes") {
+        family.style = style;
+        family.graftal = std::make_shared<const GraftalDesc>(load_graftal(style, "--style"));
+    }
+    return family;
+}
+
+CameraParams side_camera(const BuiltTree& b, int width, int height) {
+    std::vector<glm::vec3> pts = b.tree().render.positions;
+    pts.insert(pts.end(), b.tree().leaves.position.begin(), b.tree().leaves.position.end());
+    Bounds bb = bounds_of(pts);
+    glm::dvec3 c = b.position + glm::dvec3(0.5f * (bb.min + bb.max));
+    glm::dvec3 half = glm::dvec3(0.5f * (bb.max - bb.min));
+    double across = std::max(pmath::hypot(half.x, half.z), 1e-6), up = std::max(half.y, 1e-6);
+    const double fov = 30.0;
+    double tan_v = pmath::tan(0.5 * fov * M_PI / 180.0);
+    double tan_h = tan_v * width / height;
+    double d = 0.5 * across + 1.08 * std::max(across / tan_h, up / tan_v);
+    CameraParams cp;
+    cp.look_at = c;
+    cp.position = c + glm::dvec3(0.0, 0.1 * up, d);
+    cp.fov = fov;
+    cp.width = width;
+    cp.height = height;
+    return cp;
+}
+
+Frame paint_alone(const SceneDesc& scene, const BuiltTree& b, const CameraParams& cp, bool aovs,
+                  FrameReport* report) {
+    SceneDesc s = scene;
+    make_camera(cp, s.camera);
+    s.camera_params = cp;
+    const Shot shot = build_shot(std::move(s), std::make_shared<const std::vector<BuiltTree>>(1, b),
+                                 std::make_shared<const BuiltLandscape>());
+    return paint_frame(shot, still_view(shot.scene), scene_frame_settings(shot.scene, aovs),
+                       report);
+}
+
 Frame paint_contact_sheet(const Family& family, const std::vector<Tree>& trees,
                           const SheetOptions& o, FrameReport* report) {
     Frame sheet;
@@ -81,38 +134,13 @@ Frame paint_contact_sheet(const Family& family, const std::vector<Tree>& trees,
     // part of the sheet, so the bytes do not depend on threads.
     std::vector<FrameReport> reports(trees.size());
     tbb::parallel_for(size_t{0}, trees.size(), [&](size_t i) {
-        SceneDesc scene_i = scene;
         BuiltTree b;
         b.tree() = trees[i];
         b.id = trees[i].id;
         b.position = b.tree().origin;
         if (bark) b.bark() = family_bark(family, b.tree(), o.build.bark_coverage, b.tree().seed);
-        std::vector<glm::vec3> pts = b.tree().render.positions;
-        pts.insert(pts.end(), b.tree().leaves.position.begin(), b.tree().leaves.position.end());
-        Bounds bb = bounds_of(pts);
-        // Frame the tree: its width (any direction about the trunk) and its height fit the
-        // cell, with a margin, seen from slightly above its middle.
-        glm::dvec3 c = b.position + glm::dvec3(0.5f * (bb.min + bb.max));
-        glm::dvec3 half = glm::dvec3(0.5f * (bb.max - bb.min));
-        double across = std::max(pmath::hypot(half.x, half.z), 1e-6), up = std::max(half.y, 1e-6);
-        const double fov = 30.0;
-        double tan_v = pmath::tan(0.5 * fov * M_PI / 180.0);
-        double tan_h = tan_v * cell_w / cell_h;
-        double d = 0.5 * across + 1.08 * std::max(across / tan_h, up / tan_v);
-        CameraParams cp;
-        cp.look_at = c;
-        cp.position = c + glm::dvec3(0.0, 0.1 * up, d);
-        cp.fov = fov;
-        cp.width = cell_w;
-        cp.height = cell_h;
-        make_camera(cp, scene_i.camera);
-        scene_i.camera_params = cp;
         // The cell's camera frames its tree, so each cell is a shot of its own.
-        const Shot shot =
-            build_shot(std::move(scene_i), std::make_shared<const std::vector<BuiltTree>>(1, b),
-                       std::make_shared<const BuiltLandscape>());
-        Frame cell = paint_frame(shot, still_view(shot.scene), scene_frame_settings(shot.scene),
-                                 &reports[i]);
+        Frame cell = paint_alone(scene, b, side_camera(b, cell_w, cell_h), false, &reports[i]);
         const int cx = o.gap + static_cast<int>(i % cols) * (cell_w + o.gap);
         const int cy = o.gap + static_cast<int>(i / cols) * (cell_h + o.gap);
         for (int y = 0; y < cell_h; ++y)

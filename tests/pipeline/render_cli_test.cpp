@@ -130,14 +130,31 @@ TEST(RenderCli, BenchAccuracyMeasuresEveryRowHonestly) {
         rmse[cells[1]] = err;
     }
     ASSERT_GE(rmse.size(), 14u) << r.out;
-    for (const char* same :
-         {"16 samples per pixel", "exact per fragment", "exact (sin, pow)", "0 (every stroke)"})
+    for (const char* same : {"16 samples per pixel", "exact per fragment", "exact (sin, pow)",
+                             "0 (every stroke)", "every one at the samples above"})
         EXPECT_EQ(rmse.at(same), 0.0) << same;
     EXPECT_GT(rmse.at("1 sample per pixel"), rmse.at("4 samples per pixel"));
     EXPECT_GT(rmse.at("4 samples per pixel"), 0.0);
     EXPECT_GT(rmse.at("1 octave"), rmse.at("2 octaves"));
     EXPECT_GT(rmse.at("2 octaves"), rmse.at("4 octaves"));
     EXPECT_GT(rmse.at("1/256"), 0.0);
+}
+
+// `bench trees`: a row a family with its members' median and range; a bad preset or an option
+// another kind reads is one line on stderr, exit 2, and nothing on stdout.
+TEST(RenderCli, BenchTreesMeasuresEachFamilyOrRefusesInOneLine) {
+    const auto r = run_pleinair("bench trees shrub --members 2 --width 120 --height 135");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const size_t row = r.out.find("| shrub | ");
+    ASSERT_NE(row, std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(" (", row), std::string::npos) << r.out;  // median (least-most)
+    for (const char* bad : {"bench trees nosuch", "bench trees shrub --frames 1-2",
+                            "bench trees shrub --set /nokey=1", "bench look grove --members 2"}) {
+        const auto b = run_pleinair(bad);
+        EXPECT_EQ(b.exit_code, 2) << bad;
+        EXPECT_EQ(b.out, "") << bad;
+        EXPECT_EQ(std::count(b.err.begin(), b.err.end(), '\n'), 1) << bad << ": " << b.err;
+    }
 }
 
 // Same bytes through the command line on a frame of many tiles (192 of 64 px), on one thread

@@ -1,0 +1,156 @@
+// measure_form and side_masks: a tree's form from its side view's coverage (OpenImageIO's
+// dilate and erode close the masks; components and enclosed gaps by a flood fill).
+#include "pipeline/bench/tree_form.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "pipeline/output/contact_sheet.h"
+
+namespace pleinair {
+
+namespace {
+
+using Mask = std::vector<uint8_t>;
+namespace OIIO = OIIO_NAMESPACE;
+
+// The mask closed (dilated, then eroded) by a square of side 2r + 1, padded by r so the frame's
+// edge does not cut the closing short.
+Mask closed(const Mask& m, int w, int h, int r) {
+    if (r <= 0) return m;
+    const int pw = w + 2 * r, ph = h + 2 * r;
+    OIIO::ImageBuf padded(OIIO::ImageSpec(pw, ph, 1, OIIO::TypeDesc::UINT8));
+    OIIO::ImageBufAlgo::zero(padded);
+    padded.set_pixels(OIIO::ROI(r, r + w, r, r + h, 0, 1, 0, 1), OIIO::TypeDesc::UINT8, m.data());
+    const int k = 2 * r + 1;
+    const OIIO::ImageBuf shut =
+        OIIO::ImageBufAlgo::erode(OIIO::ImageBufAlgo::dilate(padded, k, k), k, k);
+    Mask out(m.size());
+    shut.get_pixels(OIIO::ROI(r, r + w, r, r + h, 0, 1, 0, 1), OIIO::TypeDesc::UINT8, out.data());
+    return out;
+}
+
+// Visits the 8-connected region of pixels equal to `value` from `start`, marking `seen`;
+// returns its size.
+size_t flood(const Mask& m, int w, int h, size_t start, uint8_t value, std::vector<bool>& seen) {
+    std::vector<size_t> todo{start};
+    seen[start] = true;
+    size_t n = 0;
+    while (!todo.empty()) {
+        const size_t i = todo.back();
+        todo.pop_back();
+        ++n;
+        const int x = static_cast<int>(i % w), y = static_cast<int>(i / w);
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                const int nx = x + dx, ny = y + dy;
+                if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+                const size_t j = static_cast<size_t>(ny) * w + nx;
+                if (seen[j] || (m[j] != 0) != (value != 0)) continue;
+                seen[j] = true;
+                todo.push_back(j);
+            }
+    }
+    return n;
+}
+
+// The first index along `counts` (rows or columns) by which `share` of the total lies before
+// it, from the front; from the back when `back`.
+int quantile_edge(const std::vector<size_t>& counts, size_t total, double share, bool back) {
+    const double want = share * static_cast<double>(total);
+    double sum = 0;
+    const int n = static_cast<int>(counts.size());
+    for (int k = 0; k < n; ++k) {
+        const int i = back ? n - 1 - k : k;
+        sum += static_cast<double>(counts[static_cast<size_t>(i)]);
+        if (sum > want) return i;
+    }
+    return back ? 0 : n - 1;
+}
+
+}  // namespace
+
+TreeForm measure_form(const SideMasks& m, const Tree& tree) {
+    TreeForm f;
+    const int w = m.width, h = m.height;
+    std::vector<size_t> rows(static_cast<size_t>(h), 0), cols(static_cast<size_t>(w), 0);
+    size_t leaves = 0;
+    int bark_top = h, bark_base = -1;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = static_cast<size_t>(y) * w + x;
+            if (m.leaf[i]) ++rows[static_cast<size_t>(y)], ++cols[static_cast<size_t>(x)], ++leaves;
+            if (m.bark[i]) bark_top = std::min(bark_top, y), bark_base = std::max(bark_base, y);
+        }
+    if (leaves == 0 || bark_base < 0) return f;
+    // The crown's extent without its last half percent of leaf pixels each way: a stray stroke
+    // does not widen it.
+    constexpr double kStray = 0.005;
+    const int top = quantile_edge(rows, leaves, kStray, false);
+    const int bottom = quantile_edge(rows, leaves, kStray, true);
+    const int left = quantile_edge(cols, leaves, kStray, false);
+    const int right = quantile_edge(cols, leaves, kStray, true);
+    const double crown_h = bottom - top + 1, crown_w = right - left + 1;
+    // Height from the trunk's foot to the crown's top: a spread over a height, as botanists
+    // give a species' form.
+    const double height = bark_base - std::min(top, bark_top) + 1;
+    f.crown_ratio = crown_w / height;
+    f.clear_trunk = std::max(0, bark_base - bottom) / height;
+
+    const LeafParticles& L = tree.leaves;
+    size_t below = 0;
+    for (size_t i = 0; i < L.position.size() && i < L.limb.size(); ++i)
+        below += L.position[i].y < tree.branches[L.limb[i]].start.y;
+    f.droop = L.position.empty() ? 0.0 : static_cast<double>(below) / L.position.size();
+
+    const double extent = std::max(crown_w, crown_h);
+    const Mask clumped = closed(m.leaf, w, h, static_cast<int>(std::lround(kClumpRadius * extent)));
+    std::vector<bool> seen(clumped.size(), false);
+    for (size_t i = 0; i < clumped.size(); ++i)
+        if (clumped[i] && !seen[i])
+            f.clumps += flood(clumped, w, h, i, 1, seen) >= kClumpArea * leaves;
+
+    // The outline: the crown closed, and every gap it then encloses (not reached from the
+    // frame's edge) filled.
+    const Mask shut = closed(m.leaf, w, h, static_cast<int>(std::lround(kOutlineRadius * extent)));
+    std::vector<bool> outside(shut.size(), false);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = static_cast<size_t>(y) * w + x;
+            const bool edge = x == 0 || y == 0 || x == w - 1 || y == h - 1;
+            if (edge && !shut[i] && !outside[i]) flood(shut, w, h, i, 0, outside);
+        }
+    size_t inside = 0, sky = 0;
+    for (size_t i = 0; i < shut.size(); ++i) {
+        if (outside[i]) continue;
+        ++inside;
+        sky += !m.leaf[i] && !m.bark[i];
+    }
+    f.holes = inside ? static_cast<double>(sky) / inside : 0.0;
+    return f;
+}
+
+SideMasks side_masks(const SceneDesc& scene, const BuiltTree& tree, int width, int height) {
+    const CameraParams camera = side_camera(tree, width, height);
+    BuiltTree leaves = tree;
+    leaves.bark_strokes = std::make_shared<BarkParticles>();
+    BuiltTree bark = tree;
+    bark.grown = std::make_shared<Tree>(tree.tree());
+    bark.grown->leaves = LeafParticles{};
+    SideMasks m;
+    m.width = width, m.height = height;
+    auto coverage = [&](const BuiltTree& b) {
+        const Frame f = paint_alone(scene, b, camera, true);
+        Mask out(f.alpha.size());
+        for (size_t i = 0; i < out.size(); ++i) out[i] = f.alpha[i] > 0.5f;
+        return out;
+    };
+    m.leaf = coverage(leaves);
+    m.bark = coverage(bark);
+    return m;
+}
+
+}  // namespace pleinair
