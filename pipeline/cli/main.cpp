@@ -211,7 +211,7 @@ Command add_bench(CLI::App& app) {
         ->required();
     b->add_option("--repeat", c->repeat, "Renders per setting (median time reported)")
         ->check(CLI::Range(1, 1000));
-    b->add_option("--set", c->set, "Override a scene key: POINTER=VALUE");
+    b->add_option("--set", c->set, "Override a scene key (trees: a tree preset's): POINTER=VALUE");
     b->add_option("--frames", c->frames, "coherence: frames A-B[xSTEP] (default: the track's)");
     b->add_flag("--preview", c->preview, "coherence: half the resolution");
     b->add_flag("--draft", c->draft, "coherence: painted as render --draft paints");
