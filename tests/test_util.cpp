@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -170,6 +171,19 @@ QuadMesh unit_cube() {
             glm::vec3(i & 1 ? 0.5f : -0.5f, i & 2 ? 0.5f : -0.5f, i & 4 ? 0.5f : -0.5f));
     m.quads = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
     return m;
+}
+
+ByteDiff byte_diff(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+    ByteDiff d;
+    if (a.size() != b.size() || a.empty()) throw std::invalid_argument("byte_diff: sizes differ");
+    double sum = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        const double e = static_cast<double>(a[i]) - b[i];
+        sum += e * e;
+        d.differ += e != 0;
+    }
+    d.rms = std::sqrt(sum / static_cast<double>(a.size()));
+    return d;
 }
 
 }  // namespace pleinair::test

@@ -49,4 +49,11 @@ QuadMesh unit_cube();
 // A fresh empty directory under the system's temporary folder.
 std::filesystem::path temp_dir(const std::string& name);
 
+// How two 8-bit images of one size differ: the RMS in levels, and how many values differ.
+struct ByteDiff {
+    double rms = 0;
+    size_t differ = 0;
+};
+ByteDiff byte_diff(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b);
+
 }  // namespace pleinair::test

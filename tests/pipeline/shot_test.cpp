@@ -528,15 +528,9 @@ TEST(Composite, LargeStrokesTakeOneSample) {
     EXPECT_LT(a.fragments * 4, b.fragments * 3);
     EXPECT_EQ(paint(large, 1000, a), every);
     ASSERT_EQ(one.size(), every.size());
-    double sum = 0;
-    size_t differ = 0;
-    for (size_t i = 0; i < one.size(); ++i) {
-        const double d = static_cast<double>(one[i]) - every[i];
-        sum += d * d;
-        differ += d != 0;
-    }
-    EXPECT_GT(differ, one.size() / 100);
-    EXPECT_LE(std::sqrt(sum / static_cast<double>(one.size())), 0.5);
+    const test::ByteDiff d = test::byte_diff(one, every);
+    EXPECT_GT(d.differ, one.size() / 100);
+    EXPECT_LE(d.rms, 0.5);
 }
 
 // The stages under the strokes on their own: the background and the underpainting only where a

@@ -13,6 +13,7 @@
 #include "pipeline/input/error.h"
 #include "pipeline/output/image_io.h"
 #include "pipeline/shot/shot.h"
+#include "test_util.h"
 
 namespace pleinair {
 namespace {
@@ -216,15 +217,9 @@ TEST(SkyStage, LargeSkyStrokesTakeOneSample) {
     const auto one = paint(zoom, 24, a), every = paint(zoom, 0, b);
     EXPECT_LT(a.fragments, b.fragments);
     ASSERT_EQ(one.size(), every.size());
-    double sum = 0;
-    size_t differ = 0;
-    for (size_t i = 0; i < one.size(); ++i) {
-        const double d = static_cast<double>(one[i]) - every[i];
-        sum += d * d;
-        differ += d != 0;
-    }
-    EXPECT_GT(differ, 0u);
-    EXPECT_LE(std::sqrt(sum / static_cast<double>(one.size())), 0.5);
+    const test::ByteDiff d = test::byte_diff(one, every);
+    EXPECT_GT(d.differ, 0u);
+    EXPECT_LE(d.rms, 0.5);
 }
 
 }  // namespace
