@@ -25,11 +25,12 @@ double position_along(const Limb& L, int s) {
     return (s + 0.5) / segments;
 }
 
+// `length_scale`: the apical profile's scale of max_length where the branch starts.
 void sprout(TreeMesh& tm, int parent_index, int s, int j, int level, uint64_t key,
-            const BranchParams& bp, uint64_t seed) {
+            const BranchParams& bp, double length_scale, uint64_t seed) {
     Rng rng = make_rng(seed, Purpose::kBranchGrow, key);
     const double angle = sample(bp.angle, rng);
-    const double max_length = sample(bp.max_length, rng) * tm.unit;
+    const double max_length = sample(bp.max_length, rng) * length_scale * tm.unit;
     const double first_length = sample(bp.first_length, rng) * tm.unit;
     const double first_taper = sample(bp.first_taper, rng);
     const int max_steps = sample_whole(bp.max_steps, rng);
@@ -115,8 +116,8 @@ void sprout(TreeMesh& tm, int parent_index, int s, int j, int level, uint64_t ke
     L.length = first_length;
     tm.limbs.push_back(std::move(L));
 
-    StepParams sp{&bp.extrude_length,   &bp.twist,       &bp.taper, &bp.wobble,
-                  bp.tropism.direction, tropism_strength};
+    StepParams sp{&bp.extrude_length,   &bp.twist,        &bp.taper,          &bp.wobble,
+                  bp.tropism.direction, tropism_strength, bp.tropism.increase};
     StopRule stop;
     stop.max_steps = max_steps - 1;
     stop.max_length = max_length;
@@ -139,12 +140,19 @@ void grow_branches(TreeMesh& tm, const BranchParams& bp, int level, uint64_t see
         for (int s = 0; s < segments; ++s) {
             double at = position_along(tm.limbs[li], s);
             bool eligible = at >= min_height && at <= max_height;
+            // Where the branch starts within the eligible span, 0 at its lowest point.
+            const double t =
+                max_height > min_height
+                    ? std::clamp((at - min_height) / (max_height - min_height), 0.0, 1.0)
+                    : 0.0;
+            const double length_scale =
+                bp.length_at_base + (bp.length_at_top - bp.length_at_base) * t;
             for (int j = 0; j < 4; ++j) {
                 uint64_t key = hash_keys(tm.limbs[li].key, static_cast<uint64_t>(level),
                                          static_cast<uint64_t>(s), static_cast<uint64_t>(j));
                 Rng decide = make_rng(seed, Purpose::kBranchDecide, key);
                 if (eligible && rand1(decide) < probability)
-                    sprout(tm, li, s, j, level, key, bp, seed);
+                    sprout(tm, li, s, j, level, key, bp, length_scale, seed);
             }
         }
     }

@@ -75,6 +75,7 @@ LeafParticles emit_leaves(const TreeMesh& tm, const TreeParams& params, uint64_t
     const int trim_trunk = sample_whole(lp.trim_top_steps_trunk, tree_rng);
     const double probability = sample(lp.probability, tree_rng);
     for (const Limb& L : tm.limbs) {
+        if (L.level < lp.lowest_level) continue;
         const RingRange rings = eligible_rings(L, lp, lowest_trunk, trim_trunk, seed);
         for (int r = rings.first; r <= rings.last; ++r) {
             for (int j = 0; j < 4; ++j) {
@@ -121,7 +122,8 @@ LeafParticles emit_leaves(const TreeMesh& tm, const TreeParams& params, uint64_t
             const double step = sample(lp.branching_distance, rng) * tm.unit;
             const double gs = rand_gaussian(rng), gl = rand_gaussian(rng);
             if (grounded) continue;  // keep drawing: the stream's position is fixed
-            dir = apply_tropism(wobble_direction(dir, wob, wob_az), lp.tropism.direction, tropism);
+            const double pull = std::max(0.0, tropism + lp.tropism.increase * dist / tm.unit);
+            dir = apply_tropism(wobble_direction(dir, wob, wob_az), lp.tropism.direction, pull);
             const glm::dvec3 next = p + dir * step;
             if (next.y < 0) {  // leaves never go under the ground
                 grounded = true;

@@ -135,7 +135,9 @@ void grow_limb(TreeMesh& tm, int limb_index, const StepParams& sp, const StopRul
         const double r = L.radii.back();
 
         glm::dvec3 heading = wobble_direction(L.heading, wobble, azimuth);
-        heading = apply_tropism(heading, sp.tropism_direction, sp.tropism_strength);
+        const double pull =
+            std::max(0.0, sp.tropism_strength + sp.tropism_increase * L.length / tm.unit);
+        heading = apply_tropism(heading, sp.tropism_direction, pull);
 
         // Limit the turn so the inner side of the new segment cannot fold back through the
         // previous ring: tan(turn) * r < len.

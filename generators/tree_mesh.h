@@ -58,6 +58,7 @@ struct StepParams {
     const Param* wobble;
     glm::dvec3 tropism_direction{0, -1, 0};
     double tropism_strength = 0;  // drawn once per limb
+    double tropism_increase = 0;  // per unit of the limb's length
 };
 
 // When a limb stops growing; checked before each step.

@@ -39,6 +39,7 @@ inline int sample_whole(const Param& p, Rng& rng) {
 struct Tropism {
     glm::dvec3 direction{0, -1, 0};
     Param strength{0, 0, 0, 10};
+    double increase = 0;  // added to the strength per unit of length grown (negative: eases)
 };
 
 struct TrunkParams {
@@ -68,6 +69,10 @@ struct BranchParams {
     Param twist{0, 5, -360, 360};
     Param taper{0.85, 0.03, 0, 1};
     Param wobble{8, 4, 0, 90};
+    // Apical dominance: max_length scaled from length_at_base (the lowest eligible point on the
+    // parent) to length_at_top (the highest), linearly.
+    double length_at_base = 1;
+    double length_at_top = 1;
     Tropism tropism;
 };
 
@@ -82,6 +87,7 @@ struct FadeParams {
 };
 
 struct LeafParams {
+    int lowest_level = 0;  // limbs of a lower level (0 trunk, 1 branches, 2 twigs) bear none
     Param lowest_step_trunk{4, 0, 0, 1024, true};
     Param trim_top_steps_trunk{0, 0, 0, 1024, true};
     Param steps_from_center{1, 0, 0, 1024, true};
@@ -139,6 +145,12 @@ void visit_branch_params(P& b, V& v) {
             "Angle between the parent's axis and the branch's initial heading; 90 is "
             "perpendicular. Per branch.");
     v.param("max_length", b.max_length, "units", "Length at which the branch stops. Per branch.");
+    v.number("length_at_base", b.length_at_base, Range{0, 10}, "",
+             "max_length's scale for a branch at min_height; from there it changes linearly to "
+             "length_at_top's at max_height (apical dominance: a conifer's short top branches, "
+             "an oak's long low limbs).");
+    v.number("length_at_top", b.length_at_top, Range{0, 10}, "",
+             "max_length's scale for a branch at max_height.");
     v.param("max_steps", b.max_steps, "",
             "Most extrusions per branch, the short first one included. Per branch.");
     v.param("first_length", b.first_length, "units",
@@ -160,6 +172,10 @@ void visit_branch_params(P& b, V& v) {
                  "Direction of the pull; normalised when used ([0, -1, 0] is gravity).");
         v.param("strength", b.tropism.strength, "",
                 "Weight of the pull added to the heading at each step. Per branch.");
+        v.number("increase", b.tropism.increase, Range{-10, 10}, "1/units",
+                 "Added to the strength for each unit of the branch's length grown, the sum "
+                 "kept at 0 or more: a branch that rises, then arches over and falls (the "
+                 "willow's hanging branchlets).");
     });
 }
 
@@ -203,6 +219,10 @@ void visit_tree_params(P& p, V& v) {
         "IV.3, Fig. 13 and 14).",
         [&] {
             auto& l = p.leaves;
+            v.integer("lowest_level", l.lowest_level, Range{0, 2},
+                      "Limbs of a lower level bear no leaves (0 the trunk, 1 branches, 2 twigs): "
+                      "2 hangs the leaves on the twigs alone, so the crown breaks into clumps "
+                      "at the ends of its limbs.");
             v.param("lowest_step_trunk", l.lowest_step_trunk, "",
                     "Trunk rings below this one (0 is the ground) emit no leaves. Per tree.");
             v.param("trim_top_steps_trunk", l.trim_top_steps_trunk, "",
@@ -229,6 +249,9 @@ void visit_tree_params(P& p, V& v) {
                              "Direction of the pull; normalised.");
                     v.param("strength", l.tropism.strength, "",
                             "Weight of the pull added before each particle. Per implied branch.");
+                    v.number("increase", l.tropism.increase, Range{-10, 10}, "1/units",
+                             "Added to the strength for each unit of the implied branch's "
+                             "length, the sum kept at 0 or more.");
                 });
             v.object(
                 "fade",

@@ -71,6 +71,25 @@ int quantile_edge(const std::vector<size_t>& counts, size_t total, double share,
     return back ? 0 : n - 1;
 }
 
+// The mean over the crown's two sides (columns within kHemSide of the crown's width from
+// `left` and from `right`) of the height above the trunk's foot where their leaves end.
+double hem(const SideMasks& m, int left, int right, int base, double height) {
+    const int side = std::max(1, static_cast<int>(std::lround(kHemSide * (right - left + 1))));
+    double sum = 0;
+    for (const auto& [x0, x1] :
+         {std::pair{left, left + side}, std::pair{right - side + 1, right + 1}}) {
+        std::vector<size_t> rows(static_cast<size_t>(m.height), 0);
+        size_t n = 0;
+        for (int y = 0; y < m.height; ++y)
+            for (int x = std::max(0, x0); x < std::min(m.width, x1); ++x)
+                if (m.leaf[static_cast<size_t>(y) * m.width + x])
+                    ++rows[static_cast<size_t>(y)], ++n;
+        const int lowest = n ? quantile_edge(rows, n, kHemStray, true) : base;
+        sum += std::max(0, base - lowest) / height;
+    }
+    return 0.5 * sum;
+}
+
 }  // namespace
 
 TreeForm measure_form(const SideMasks& m, const Tree& tree) {
@@ -99,6 +118,8 @@ TreeForm measure_form(const SideMasks& m, const Tree& tree) {
     const double height = bark_base - std::min(top, bark_top) + 1;
     f.crown_ratio = crown_w / height;
     f.clear_trunk = std::max(0, bark_base - bottom) / height;
+
+    f.hem = hem(m, left, right, bark_base, height);
 
     const LeafParticles& L = tree.leaves;
     size_t below = 0;

@@ -14,6 +14,7 @@ struct TreeForm {
     double crown_ratio = 0;  // the crown's width (spread) over the tree's height, from the side
     double clear_trunk = 0;  // trunk clear of leaves, over the tree's height
     double droop = 0;        // share of the leaves below the base of the limb they grow from
+    double hem = 0;          // how high the crown's sides end, over the tree's height (kHemSide)
     int clumps = 0;          // separate masses of leaves (kClumpRadius, kClumpArea)
     double holes = 0;        // share of the crown's outline (kOutlineRadius) where sky shows
 };
@@ -25,6 +26,11 @@ struct TreeForm {
 inline constexpr double kClumpRadius = 0.015;
 inline constexpr double kClumpArea = 0.01;
 inline constexpr double kOutlineRadius = 0.04;
+// The crown's sides are the outer kHemSide of its width each way; their hem is where their
+// lowest leaves end, less the lowest kHemStray of those leaves (a stray stroke does not lower
+// it). A weeping willow's curtain ends near the ground, a stone pine's parasol high.
+inline constexpr double kHemSide = 0.2;
+inline constexpr double kHemStray = 0.02;
 
 // Coverage seen from the side, row 0 at the top, 1 where a stroke more than half opaque lies.
 struct SideMasks {

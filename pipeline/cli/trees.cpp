@@ -46,8 +46,8 @@ int run_bench_trees(const BenchCommand& cmd) {
         "at %dx%d, leaves then bark:\n\n",
         cmd.members, static_cast<unsigned long long>(cmd.seed), cmd.cell_width, cmd.cell_height);
     std::printf(
-        "| family | spread / height | clear trunk / height | droop | clumps | sky in "
-        "the crown | ms a member |\n|---|---:|---:|---:|---:|---:|---:|\n");
+        "| family | spread / height | clear trunk / height | droop | sides' hem / height | "
+        "clumps | sky in the crown | ms a member |\n|---|---:|---:|---:|---:|---:|---:|---:|\n");
     for (const auto& [name, params] : presets) {
         SceneDesc scene;
         scene.families = {sheet_family(name, name, params)};
@@ -55,7 +55,7 @@ int run_bench_trees(const BenchCommand& cmd) {
         const auto t0 = std::chrono::steady_clock::now();
         const std::vector<Tree> trees =
             generate_family(params, cmd.seed, static_cast<uint32_t>(cmd.members));
-        std::vector<double> ratio, clear, droop, clumps, holes;
+        std::vector<double> ratio, clear, droop, hem, clumps, holes;
         for (const Tree& t : trees) {
             BuiltTree b;
             b.tree() = t;
@@ -65,14 +65,16 @@ int run_bench_trees(const BenchCommand& cmd) {
             const TreeForm f =
                 measure_form(side_masks(scene, b, cmd.cell_width, cmd.cell_height), t);
             ratio.push_back(f.crown_ratio), clear.push_back(f.clear_trunk);
-            droop.push_back(f.droop), clumps.push_back(f.clumps), holes.push_back(f.holes);
+            droop.push_back(f.droop), hem.push_back(f.hem);
+            clumps.push_back(f.clumps), holes.push_back(f.holes);
         }
         const double ms =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                 .count();
-        std::printf("| %s | %s | %s | %s | %s | %s | %.0f |\n", name.c_str(),
+        std::printf("| %s | %s | %s | %s | %s | %s | %s | %.0f |\n", name.c_str(),
                     spread(ratio, 2).c_str(), spread(clear, 2).c_str(), spread(droop, 2).c_str(),
-                    spread(clumps, 0).c_str(), spread(holes, 2).c_str(), ms / trees.size());
+                    spread(hem, 2).c_str(), spread(clumps, 0).c_str(), spread(holes, 2).c_str(),
+                    ms / trees.size());
     }
     return 0;
 }

@@ -101,6 +101,67 @@ TEST(Branches, GravityBendsBranchesDown) {
     EXPECT_LT(mean_rise(1.0), mean_rise(0.0) - 1.0);
 }
 
+// A pull that grows along the branch leaves its start as it was and bends its end further:
+// the willow's branch rises, then arches over.
+TEST(Branches, ATropismThatIncreasesBendsTheEndMoreThanTheStart) {
+    TreeParams p = test::preset("oak");
+    p.twigs.enabled = false;
+    p.branches.wobble = {0, 0, 0, 90};
+    p.branches.max_length = {8, 0, 1e-3, 1e5};
+    p.branches.max_steps = {12, 0, 1, 256, true};
+    p.branches.tropism = {{0, -1, 0}, {0, 0, 0, 10}};
+    const TreeMesh still = grow(p, 8);
+    p.branches.tropism.increase = 0.3;
+    const TreeMesh arched = grow(p, 8);
+    ASSERT_EQ(still.limbs.size(), arched.limbs.size());  // the pull changes no decision
+    int bent = 0;
+    for (size_t i = 1; i < still.limbs.size(); ++i) {
+        const Limb &a = still.limbs[i], &b = arched.limbs[i];
+        // The first extrusion is the same, the face being forced square along the normal.
+        EXPECT_EQ(a.centers[1], b.centers[1]);
+        if (a.centers.size() < 5 || b.centers.size() < 5) continue;
+        const glm::dvec3 da = glm::normalize(a.centers.back() - a.centers[a.centers.size() - 2]);
+        const glm::dvec3 db = glm::normalize(b.centers.back() - b.centers[b.centers.size() - 2]);
+        EXPECT_LT(db.y, da.y - 0.2) << "branch " << i;
+        EXPECT_LT(db.y, 0.0) << "branch " << i;  // past its arch, it falls
+        ++bent;
+    }
+    EXPECT_GT(bent, 4);
+    // A negative increase that would take the pull below zero stops at none.
+    p.branches.tropism.increase = -5;
+    const TreeMesh eased = grow(p, 8);
+    for (size_t i = 0; i < still.limbs.size(); ++i)
+        EXPECT_EQ(still.limbs[i].centers, eased.limbs[i].centers);
+}
+
+// Apical dominance: branches scale their length by where they start, from length_at_base at
+// min_height to length_at_top at max_height.
+TEST(Branches, LengthFollowsTheApicalProfile) {
+    TreeParams p = test::preset("poplar");
+    p.twigs.enabled = false;
+    p.branches.probability.base = 1;
+    p.branches.max_length = {3, 0, 1e-3, 1e5};
+    p.branches.max_steps = {64, 0, 1, 256, true};
+    p.branches.length_at_base = 1.5;
+    p.branches.length_at_top = 0.2;
+    const TreeMesh tm = grow(p, 5);
+    const Limb& trunk = tm.limbs[0];
+    const double top = trunk.centers.back().y;
+    const double lo = p.branches.min_height.base, hi = p.branches.max_height.base;
+    ASSERT_GT(tm.limbs.size(), 10u);
+    for (size_t i = 1; i < tm.limbs.size(); ++i) {
+        const Limb& L = tm.limbs[i];
+        const int s = L.parent_segment;
+        const double at = 0.5 * (trunk.centers[s].y + trunk.centers[s + 1].y) / top;
+        const double scale = 1.5 + (0.2 - 1.5) * std::clamp((at - lo) / (hi - lo), 0.0, 1.0);
+        // It stops at the first step that reaches its length, or on the ground.
+        const double want = 3 * scale, step = 1.01 * p.branches.extrude_length.base +
+                                              4 * p.branches.extrude_length.var;
+        EXPECT_LE(L.length, want + step) << "branch " << i << " at " << at;
+        if (L.centers.back().y > 0.5) EXPECT_GE(L.length, want - 1e-9) << "branch " << i;
+    }
+}
+
 TEST(Branches, NothingGrowsIntoTheGround) {
     TreeParams p = test::preset("shrub");
     p.branches.angle = {175, 5, 0, 180};  // pointing down

@@ -108,6 +108,45 @@ TEST(Leaves, EveryEligibleVertexEmitsAFullImpliedBranchAtProbabilityOne) {
     EXPECT_EQ(center, tm.limbs[0].centers.back());  // no canopy: the top of the trunk
 }
 
+// /leaves/lowest_level keeps leaves off the lower levels, and the others' leaves stay as
+// they were (each emitter draws from its own stream).
+TEST(Leaves, LowestLevelKeepsLeavesOffTheLowerLimbs) {
+    TreeParams p = test::preset("oak");
+    p.leaves.lowest_level = 0;
+    TreeMesh tm;
+    grow_skeleton(tm, p, 6);
+    glm::dvec3 center;
+    const LeafParticles all = emit_leaves(tm, p, 6, 0, center);
+    for (int level : {1, 2}) {
+        p.leaves.lowest_level = level;
+        const LeafParticles some = emit_leaves(tm, p, 6, 0, center);
+        std::vector<glm::vec3> kept;
+        for (size_t i = 0; i < all.size(); ++i)
+            if (tm.limbs[all.limb[i]].level >= level) kept.push_back(all.position[i]);
+        ASSERT_GT(kept.size(), 100u);
+        ASSERT_LT(kept.size(), all.size());
+        EXPECT_EQ(some.position, kept) << "lowest level " << level;
+        for (uint32_t limb : some.limb) EXPECT_GE(tm.limbs[limb].level, level);
+    }
+}
+
+// A strand's pull that grows with its length hangs its last leaves lower than a constant one.
+TEST(Leaves, ATropismThatIncreasesHangsTheStrandsEnds) {
+    TreeParams p = test::preset("birch");
+    p.leaves.branching_steps = {8, 0, 1, 64, true};
+    p.leaves.tropism = {{0, -1, 0}, {0.1, 0, 0, 10}};
+    TreeMesh tm;
+    grow_skeleton(tm, p, 2);
+    glm::dvec3 center;
+    const LeafParticles flat = emit_leaves(tm, p, 2, 0, center);
+    p.leaves.tropism.increase = 2;
+    const LeafParticles hung = emit_leaves(tm, p, 2, 0, center);
+    double mean_flat = 0, mean_hung = 0;
+    for (const auto& q : flat.position) mean_flat += q.y / flat.size();
+    for (const auto& q : hung.position) mean_hung += q.y / hung.size();
+    EXPECT_LT(mean_hung, mean_flat - 0.3);
+}
+
 TEST(Leaves, ParticlesFollowTheirImpliedBranch) {
     TreeParams p = test::preset("birch");
     p.leaves.probability.base = 1;

@@ -47,6 +47,26 @@ TEST(TreeForm, OneDiscOnATrunk) {
     EXPECT_EQ(f.droop, 0.0);          // a tree with no leaves' limbs droops nowhere
 }
 
+// The hem is where the crown's sides end: a round crown's sides end high on its trunk, a
+// curtain hanging from them ends near the ground.
+TEST(TreeForm, TheHemIsWhereTheSidesEnd) {
+    // The disc of OneDiscOnATrunk: its sides are its outer 40 columns each way, whose lowest
+    // leaves are at row 230 (where x = 140 meets the circle), 169 rows above the trunk's foot
+    // in a tree 350 rows tall (0.48); cutting the sides' lowest 2% of pixels (some 90, where
+    // the circle's arc is thin) raises that by about ten rows.
+    const SideMasks disc = masks(150, [](int x, int y) { return in_disc(x, y, 200, 150, 100); });
+    const double round = measure_form(disc, Tree{}).hem;
+    EXPECT_GT(round, 169.0 / 350.0);
+    EXPECT_LT(round, 184.0 / 350.0);
+    // Strips 10 px wide hang from its sides to row 380: the hem falls to about 19 rows above
+    // the foot, raised by the cut (2% of the sides' 5,700 pixels: 11 rows of the strips).
+    const SideMasks curtain = masks(150, [](int x, int y) {
+        return in_disc(x, y, 200, 150, 100) ||
+               (y <= 380 && y >= 150 && ((x >= 100 && x < 110) || (x > 290 && x <= 300)));
+    });
+    EXPECT_NEAR(measure_form(curtain, Tree{}).hem, 30.0 / 350.0, 0.02);
+}
+
 TEST(TreeForm, SeparateMassesAreClumpsAndEnclosedSkyIsHoles) {
     // Two discs of radius 60, 40 px apart, on one trunk: two clumps, no enclosed sky.
     const SideMasks two = masks(150, [](int x, int y) {
