@@ -158,7 +158,9 @@ TEST(Branches, LengthFollowsTheApicalProfile) {
         const double want = 3 * scale, step = 1.01 * p.branches.extrude_length.base +
                                               4 * p.branches.extrude_length.var;
         EXPECT_LE(L.length, want + step) << "branch " << i << " at " << at;
-        if (L.centers.back().y > 0.5) EXPECT_GE(L.length, want - 1e-9) << "branch " << i;
+        if (L.centers.back().y > 0.5) {
+            EXPECT_GE(L.length, want - 1e-9) << "branch " << i;
+        }
     }
 }
 
