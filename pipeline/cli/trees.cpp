@@ -38,7 +38,7 @@ int run_bench_trees(const BenchCommand& cmd) {
     // Every preset read before a line is printed: a bad one leaves no half table.
     std::vector<std::pair<std::string, TreeParams>> presets;
     for (const std::string& preset : names) {
-        const std::filesystem::path file = resolve_tree_preset(preset);
+        const std::filesystem::path file = resolve_tree_preset(preset, "bench trees");
         presets.emplace_back(file.stem().string(), load_tree_preset(file, cmd.set));
     }
     std::printf(

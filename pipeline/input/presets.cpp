@@ -43,8 +43,8 @@ fs::path resolve_preset(const std::string& kind, const std::string& s, const std
                          " (available: " + available + ")");
 }
 
-fs::path resolve_tree_preset(const std::string& s) {
-    return resolve_preset("trees", s, "--preset");
+fs::path resolve_tree_preset(const std::string& s, const std::string& source) {
+    return resolve_preset("trees", s, source);
 }
 
 std::string read_input_file(const fs::path& file, const char* limit) {

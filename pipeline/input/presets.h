@@ -36,7 +36,9 @@ std::vector<PresetInfo> list_tree_presets();
 
 // A path (contains '/' or ends in .json) is read as is; a bare name is looked up in
 // preset_root()/trees. Throws InputError naming what is available if nothing matches.
-std::filesystem::path resolve_tree_preset(const std::string& name_or_file);
+// `source` names where the name came from in an error (an option, or a command's argument).
+std::filesystem::path resolve_tree_preset(const std::string& name_or_file,
+                                          const std::string& source = "--preset");
 
 // Reads, applies "POINTER=VALUE" overrides, validates. Throws InputError.
 TreeParams load_tree_preset(const std::filesystem::path& file,

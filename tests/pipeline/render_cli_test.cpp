@@ -155,6 +155,9 @@ TEST(RenderCli, BenchTreesMeasuresEachFamilyOrRefusesInOneLine) {
         EXPECT_EQ(b.out, "") << bad;
         EXPECT_EQ(std::count(b.err.begin(), b.err.end(), '\n'), 1) << bad << ": " << b.err;
     }
+    // The unknown family is named as bench trees' argument, not as an option it has not.
+    const auto nosuch = run_pleinair("bench trees nosuch");
+    EXPECT_EQ(nosuch.err.rfind("bench trees: no tree preset \"nosuch\"", 0), 0u) << nosuch.err;
 }
 
 // Same bytes through the command line on a frame of many tiles (192 of 64 px), on one thread
