@@ -122,7 +122,7 @@ LeafParticles emit_leaves(const TreeMesh& tm, const TreeParams& params, uint64_t
             const double step = sample(lp.branching_distance, rng) * tm.unit;
             const double gs = rand_gaussian(rng), gl = rand_gaussian(rng);
             if (grounded) continue;  // keep drawing: the stream's position is fixed
-            const double pull = std::max(0.0, tropism + lp.tropism.increase * dist / tm.unit);
+            const double pull = tropism_pull(tropism, lp.tropism.increase, dist, tm.unit);
             dir = apply_tropism(wobble_direction(dir, wob, wob_az), lp.tropism.direction, pull);
             const glm::dvec3 next = p + dir * step;
             if (next.y < 0) {  // leaves never go under the ground

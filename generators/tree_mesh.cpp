@@ -74,6 +74,10 @@ glm::dvec3 apply_tropism(const glm::dvec3& heading, const glm::dvec3& direction,
     return safe_normalize(heading + strength * d, heading);
 }
 
+double tropism_pull(double strength, double increase, double length, double unit) {
+    return std::max(0.0, strength + increase * length / unit);
+}
+
 TreeMesh::TreeMesh() {
     // Room for a large tree up front: growing OpenMesh's arrays step by step showed in profiles.
     mesh.reserve(2048, 4096, 2048);
@@ -136,7 +140,7 @@ void grow_limb(TreeMesh& tm, int limb_index, const StepParams& sp, const StopRul
 
         glm::dvec3 heading = wobble_direction(L.heading, wobble, azimuth);
         const double pull =
-            std::max(0.0, sp.tropism_strength + sp.tropism_increase * L.length / tm.unit);
+            tropism_pull(sp.tropism_strength, sp.tropism_increase, L.length, tm.unit);
         heading = apply_tropism(heading, sp.tropism_direction, pull);
 
         // Limit the turn so the inner side of the new segment cannot fold back through the

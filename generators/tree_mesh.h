@@ -91,6 +91,9 @@ glm::dvec3 wobble_direction(const glm::dvec3& v, double degrees, double turns);
 // The same turn given by the cosine and sine of its angle.
 glm::dvec3 turn_direction(const glm::dvec3& v, double cos_t, double sin_t, double turns);
 glm::dvec3 apply_tropism(const glm::dvec3& heading, const glm::dvec3& direction, double strength);
+// A tropism's pull once `length` has grown (in world units, `unit` a tree unit): its strength
+// plus its increase per tree unit, never below none (limbs and leaf strands alike).
+double tropism_pull(double strength, double increase, double length, double unit);
 double radians(double degrees);
 
 }  // namespace pleinair
