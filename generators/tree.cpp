@@ -117,6 +117,9 @@ Tree generate_tree(const TreeParams& params, uint64_t seed, const TreeOptions& o
             trunk.face_segments.push_back(0);
             trunk.face_slots.push_back(base_slot);
         }
+    const LeafParticles& leaves = tree.leaves;
+    for (size_t i = 0; i < leaves.size(); ++i)
+        if (leaves.fade_begin[i] > 1.0f) tree.branches[leaves.limb[i]].keeps_leaves = true;
     tree.planting_depth = planting_depth(tree);
     return tree;
 }

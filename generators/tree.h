@@ -23,6 +23,9 @@ struct BranchInfo {
     glm::vec3 start{0.0f};  // centre of the base ring (tree-local)
     glm::vec3 end{0.0f};    // centre of the tip ring
     float length = 0;       // along the skeleton
+    // It bears a leaf that never fades (fade_begin > 1): a twig's bark stays with such leaves
+    // at every level of detail, or they would hang in the air when the tree recedes.
+    bool keeps_leaves = false;
     std::vector<glm::vec3> ring_centers;
     std::vector<float> ring_radii;  // non-increasing from base to tip
     // The control-mesh faces this limb owns, in a stable order (its side faces segment by

@@ -28,8 +28,8 @@ float leaf_fade(float value, float fade_begin, float fade_end, float g) {
     return 1.0f - gain((value - fade_begin) / (fade_end - fade_begin), g);
 }
 
-float bark_fade(float trunk_value, int limb_level, float label, float g) {
-    if (limb_level < 2) return 1.0f;
+float bark_fade(float trunk_value, bool fades, float label, float g) {
+    if (!fades) return 1.0f;
     const float begin = bark_fade_begin(label);
     return leaf_fade(trunk_value, begin, begin + kBarkFadeSpan, g);
 }
@@ -243,7 +243,7 @@ ParticleLod particle_lod(const Shot& shot, const FrameLod& lod, size_t item, Spr
     const BuiltTree& b = trees[item];
     if (kind == SpriteKind::kBark) {
         if (lod.trunks)
-            out.fade = bark_fade(t.trunk, b.tree().branches[b.bark().limb[j]].level,
+            out.fade = bark_fade(t.trunk, twig_bark_fades(b.tree().branches[b.bark().limb[j]]),
                                  b.bark().label[j], lod.fade_gain);
         return out;
     }

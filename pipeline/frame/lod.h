@@ -91,9 +91,10 @@ double max_fade_rate(double shortest_fade, float g);
 float leaf_fade(float value, float fade_begin, float fade_end, float gain);
 
 // A bark stroke's opacity at its tree's trunk distance value: strokes on the trunk and first
-// branches (the low-detail model) stay; deeper limbs' strokes fade, each over its own span of
-// 0.4 starting between 0 and 0.6 (drawn from its label), so the model cross-fades.
-float bark_fade(float trunk_value, int limb_level, float label, float gain);
+// branches (the low-detail model) stay, and so do those on twigs that bear a leaf which never
+// fades (twig_bark_fades); other twigs' strokes fade, each over its own span of 0.4 starting
+// between 0 and 0.6 (drawn from its label), so the model cross-fades.
+float bark_fade(float trunk_value, bool fades, float label, float gain);
 
 // A leaf's size factor in the near field (value from near_field_value): interior leaves (small
 // centre distance) shrink away first, each from its own threshold; outer ones stay, so the

@@ -80,7 +80,7 @@ float gone_at(const ParticleSource& shot, size_t item, SpriteKind kind, size_t j
         at = std::max(L.fade_begin[j], L.fade_end[j]);
     } else if (kind == SpriteKind::kBark) {
         const BuiltTree& b = trees[item];
-        if (b.tree().branches[b.bark().limb[j]].level >= 2)
+        if (twig_bark_fades(b.tree().branches[b.bark().limb[j]]))
             at = bark_fade_begin(b.bark().label[j]) + kBarkFadeSpan;
     } else {
         const SurfaceParticles& S = shot.land.chunks[item - trees.size()];

@@ -8,6 +8,7 @@
 #include <limits>
 #include <vector>
 
+#include "generators/tree.h"
 #include "pipeline/shot/materials.h"
 #include "shading/stroke_shader.h"
 
@@ -19,6 +20,11 @@ inline constexpr uint32_t kClusterSize = 64;
 // fade begins (between 0 and 0.6, drawn from its label): lod.h's bark_fade.
 constexpr float kBarkFadeSpan = 0.4f;
 inline float bark_fade_begin(float label) { return (1.0f - kBarkFadeSpan) * label_hash(label, 3); }
+// Whether a limb's bark strokes fade with distance: a twig's do, unless it bears a leaf that
+// never fades (the leaves the far circle keeps would otherwise hang in the air).
+inline bool twig_bark_fades(const BranchInfo& limb) {
+    return limb.level >= 2 && !limb.keeps_leaves;
+}
 
 struct ParticleCluster {
     SpriteKind kind = SpriteKind::kLeaf;
