@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates docs/gallery.md and its images (`make gallery`): every shipped scene and every
-# tree family in both styles at 640x360, and issue 13's Corot look beside the thesis's, each
-# image with the command that paints it. JPEG at quality 85 keeps each under 200 KB (checked).
+# tree family in both styles at 640x360, issue 13's Corot look beside the thesis's, and issue
+# 27's families and pond beside their images before it, each image with the command that
+# paints it. JPEG at quality 85 keeps each under 200 KB (checked).
 set -euo pipefail
 
 BIN=${1:-build/pleinair}
@@ -113,6 +114,34 @@ for f in presets/trees/*.json; do
     jpg "$TMP/$name-graftal.png" "family-$name-graftals"
     echo "| \`$name\`: \`pleinair family --preset $name --count 4 --width $W --height $H -o $name.png\`, the same with \`--style $style\` | ![](gallery/family-$name.jpg) | ![](gallery/family-$name-graftals.jpg) |" >> "$MD"
 done
+
+cat >> "$MD" <<'EOF'
+
+## Species and the pond (issue 27): before and after
+
+Left, as pleinair painted them before issue 27 (b2e9d7e's binary, the same command; kept in
+`gallery/before/`, which `make gallery` does not repaint); right, as it paints them now. The
+families' measures against their species' targets are in BENCHMARKS.md, "Trees from the side
+(issue 27)"; the pond's in "Corot's crowns, palette and pond".
+
+| what changed | before | now |
+|---|---|---|
+EOF
+
+# family NAME WHAT: three members before and now, with the command.
+family() {
+    "$BIN" family --preset "$1" --count 3 --width 720 --height 400 -o "$TMP/$1-3.png" > /dev/null
+    jpg "$TMP/$1-3.png" "now-family-$1"
+    echo "| \`$1\`: $2 \`pleinair family --preset $1 --count 3 --width 720 --height 400 -o $1.png\` | ![](gallery/before/family-$1.jpg) | ![](gallery/now-family-$1.jpg) |" >> "$MD"
+}
+family willow "a dark haystack before; now as wide as tall, its branchlets falling in a curtain nearly to the ground."
+family poplar "a column three to four times as tall as wide, branched nearly to the ground."
+family oak "a round bush hiding its trunk before; now a short bole bare to half its height under a few limbs spreading nearly level, the sky through broken masses."
+family birch "a narrow, airy crown on a white trunk that shows, its branchlets drooping."
+family pine "the umbrella on a tall bare trunk (the stone pine read as its species before too)."
+family shrub "a garden shrub, branched from the ground (no species; unchanged)."
+family truffula "Dr. Seuss's tufts on bare stems (no species; unchanged)."
+echo "| \`mortefontaine\`: the oak leaning over the meadow on the right, and the pond mirroring the far bank darker and greyer than the bank itself. \`pleinair render mortefontaine -o mortefontaine.png $SIZE\` | ![](gallery/before/scene-mortefontaine.jpg) | ![](gallery/scene-mortefontaine.jpg) |" >> "$MD"
 
 mv "$MD" docs/gallery.md
 echo "docs/gallery.md: $(ls "$OUT"/*.jpg | wc -l) images, $(du -ck "$OUT"/*.jpg | tail -1 | cut -f1) KB"

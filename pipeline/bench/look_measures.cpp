@@ -1,12 +1,15 @@
-// frame_lightness, brush_texture, mean_flat_run, look_regions, mirror_correlation.
+// frame_lightness, brush_texture, mean_flat_run, look_regions, mirror_correlation,
+// mirror_sources and mirror_match.
 #include "pipeline/bench/look_measures.h"
 
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <limits>
 
+#include "pipeline/bench/palette_look.h"
 #include "pipeline/frame/frame_view.h"
 #include "pipeline/input/camera.h"
 #include "pipeline/shot/shot.h"
@@ -191,6 +194,95 @@ double mirror_correlation(const std::vector<float>& l, int w, int h,
     const double cov = sab / N - sa / N * sb / N;
     const double va = saa / N - sa / N * sa / N, vb = sbb / N - sb / N * sb / N;
     return va > 0 && vb > 0 ? cov / std::sqrt(va * vb) : 0.0;
+}
+
+float water_stroke_id(const SceneDesc& scene) {
+    // A surface stroke's id is 0x10000 + its scene material (sprites.cpp).
+    return static_cast<float>(0x10000u + scene.water.material);
+}
+
+std::vector<uint32_t> mirror_sources(const Frame& f, const Camera& cam, double level,
+                                     const std::vector<uint8_t>& water, float water_id) {
+    const size_t n = static_cast<size_t>(f.width) * f.height;
+    std::vector<uint32_t> src(n, 0);
+    if (!f.has_aovs) return src;
+    std::vector<float> nearest(n, std::numeric_limits<float>::infinity());
+    for (int y = 0; y < f.height; ++y)
+        for (int x = 0; x < f.width; ++x) {
+            const size_t i = static_cast<size_t>(y) * f.width + x;
+            if (water[i] || !(f.depth[i] < std::numeric_limits<float>::max())) continue;
+            const glm::dvec3 d = ray_direction(cam, x + 0.5, y + 0.5);
+            glm::dvec3 p =
+                cam.eye + d * (static_cast<double>(f.depth[i]) / glm::dot(d, cam.forward));
+            if (!(p.y > level)) continue;
+            p.y = 2.0 * level - p.y;
+            const Projection q = project(cam, p);
+            if (!q.in_front) continue;
+            const double qx = std::floor(q.x), qy = std::floor(q.y);
+            for (int dy = 0; dy <= 1; ++dy) {
+                if (!(qx >= 0 && qx < f.width && qy + dy >= 0 && qy + dy < f.height)) continue;
+                const size_t j = static_cast<size_t>(qy + dy) * f.width + static_cast<size_t>(qx);
+                if (!water[j] || f.object_id[j] != water_id || !(q.depth < nearest[j])) continue;
+                nearest[j] = q.depth, src[j] = static_cast<uint32_t>(i + 1);
+            }
+        }
+    return src;
+}
+
+namespace {
+
+struct Pearson {
+    double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+    uint64_t n = 0;
+    void add(double a, double b) {
+        sa += a, sb += b, saa += a * a, sbb += b * b, sab += a * b, ++n;
+    }
+    double r() const {
+        if (n < 16) return 0.0;
+        const double N = static_cast<double>(n);
+        const double cov = sab / N - sa / N * sb / N;
+        const double va = saa / N - sa / N * sa / N, vb = sbb / N - sb / N * sb / N;
+        return va > 0 && vb > 0 ? cov / std::sqrt(va * vb) : 0.0;
+    }
+};
+
+float chroma_at(const Frame& f, size_t i) {
+    const float a = f.rgba[4 * i + 3], k = a > 0 ? 1.0f / a : 0.0f;
+    const auto lab =
+        linear_srgb_to_lab(f.rgba[4 * i] * k, f.rgba[4 * i + 1] * k, f.rgba[4 * i + 2] * k);
+    return pmath::hypot(lab[1], lab[2]);
+}
+
+}  // namespace
+
+MirrorMatch mirror_match(const Frame& f, const std::vector<float>& l,
+                         const std::vector<uint32_t>& src) {
+    MirrorMatch m;
+    Pearson px, blocks;
+    double lw = 0, ls = 0, cw = 0, cs = 0;
+    for (size_t j = 0; j < src.size(); ++j) {
+        if (!src[j]) continue;
+        const size_t i = src[j] - 1;
+        px.add(l[j], l[i]);
+        lw += l[j], ls += l[i], cw += chroma_at(f, j), cs += chroma_at(f, i);
+    }
+    const int B = kMirrorBlock;
+    for (int by = 0; by + B <= f.height; by += B)
+        for (int bx = 0; bx + B <= f.width; bx += B) {
+            double a = 0, b = 0;
+            int c = 0;
+            for (int y = by; y < by + B; ++y)
+                for (int x = bx; x < bx + B; ++x) {
+                    const size_t j = static_cast<size_t>(y) * f.width + x;
+                    if (src[j]) a += l[j], b += l[src[j] - 1], ++c;
+                }
+            if (2 * c >= B * B) blocks.add(a / c, b / c);
+        }
+    m.pairs = px.n;
+    m.pixels = px.r(), m.forms = blocks.r();
+    m.lightness = ls > 0 ? lw / ls : 0.0;
+    m.chroma = cs > 0 ? cw / cs : 0.0;
+    return m;
 }
 
 }  // namespace pleinair

@@ -1,13 +1,14 @@
 // Measures of a painted frame's look (issue 13 §6), computed from its pixels and AOVs: how much
 // brush texture a region carries, whether a smooth region bands in 8-bit output, and how well
-// water mirrors the bank above it, and whether the open sky keeps to its palette.
+// water mirrors the bank above it (about its shore's row, and as a flat mirror does), and
+// whether the open sky keeps to its palette.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
-#include "pipeline/input/camera.h"
 #include "pipeline/frame/frame_image.h"
+#include "pipeline/input/camera.h"
 #include "pipeline/input/scene.h"
 
 namespace pleinair {
@@ -35,6 +36,9 @@ double mean_flat_run(const Frame& frame, const std::vector<uint8_t>& mask);
 struct LookRegions {
     std::vector<uint8_t> sky, trees, water;
 };
+
+// The object id a scene's water strokes carry in the frame's AOV.
+float water_stroke_id(const SceneDesc& scene);
 LookRegions look_regions(const Shot& shot, const FrameView& view, const Frame& frame);
 
 // The Pearson correlation of L* between each water pixel and the pixel mirrored about its
@@ -42,6 +46,33 @@ LookRegions look_regions(const Shot& shot, const FrameView& view, const Frame& f
 // whose mirrored pixel is inside the frame and not water. 0 when fewer than 16 pairs.
 double mirror_correlation(const std::vector<float>& lightness, int width, int height,
                           const std::vector<uint8_t>& water, uint64_t* pairs = nullptr);
+
+// What a flat mirror shows at each water pixel: the frame's own pixels above the water, each at
+// its depth mirrored about the water's plane (height `level`) and projected back into the frame;
+// the nearest wins where several land on one pixel, and each also fills the pixel below it (a
+// mirrored row may stretch by one). The sources are the pixels off `water`; the targets those on
+// it whose nearest stroke has `water_id` (not the bank's grass painted over its edge). Per pixel
+// the source's index + 1, 0 where none lands or off the targets. Unlike the mirror about the
+// shore's row, this is where a glass mirror puts the bank whatever stands behind the shore: a
+// perfect mirror scores 1 against it (issue 27 §3).
+std::vector<uint32_t> mirror_sources(const Frame& frame, const Camera& camera, double level,
+                                     const std::vector<uint8_t>& water, float water_id);
+
+// The side of the square blocks over which mirror_match compares forms: at 1920x1080 about a
+// trunk's width across the pond, finer than a far crown, coarser than a water stroke's height.
+inline constexpr int kMirrorBlock = 8;
+
+// How the water's paint matches what it mirrors (mirror_sources), over the water pixels that
+// have a source.
+struct MirrorMatch {
+    double pixels = 0;     // Pearson correlation of L*, each water pixel against its source
+    double forms = 0;      // the same between kMirrorBlock blocks' means (blocks half matched)
+    double lightness = 0;  // mean L* of the water pixels over their sources'
+    double chroma = 0;     // mean CIELAB chroma of the water pixels over their sources'
+    uint64_t pairs = 0;
+};
+MirrorMatch mirror_match(const Frame& frame, const std::vector<float>& lightness,
+                         const std::vector<uint32_t>& sources);
 
 // What colour a day sky may take (sRGB, per channel): the least and the most over the sky
 // palette's colours, the background's sky gradient and, under a painted sky, the shader's

@@ -1,61 +1,16 @@
-// measure_form and side_masks: a tree's form from its side view's coverage (OpenImageIO's
-// dilate and erode close the masks; components and enclosed gaps by a flood fill).
+// measure_form and side_masks: a tree's form from its side view's coverage (masks.h closes the
+// masks and finds their components and outlines).
 #include "pipeline/bench/tree_form.h"
-
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
 
 #include <algorithm>
 #include <cmath>
 
+#include "pipeline/bench/masks.h"
 #include "pipeline/output/contact_sheet.h"
 
 namespace pleinair {
 
 namespace {
-
-using Mask = std::vector<uint8_t>;
-namespace OIIO = OIIO_NAMESPACE;
-
-// The mask closed (dilated, then eroded) by a square of side 2r + 1, padded by r so the frame's
-// edge does not cut the closing short.
-Mask closed(const Mask& m, int w, int h, int r) {
-    if (r <= 0) return m;
-    const int pw = w + 2 * r, ph = h + 2 * r;
-    OIIO::ImageBuf padded(OIIO::ImageSpec(pw, ph, 1, OIIO::TypeDesc::UINT8));
-    OIIO::ImageBufAlgo::zero(padded);
-    padded.set_pixels(OIIO::ROI(r, r + w, r, r + h, 0, 1, 0, 1), OIIO::TypeDesc::UINT8, m.data());
-    const int k = 2 * r + 1;
-    const OIIO::ImageBuf shut =
-        OIIO::ImageBufAlgo::erode(OIIO::ImageBufAlgo::dilate(padded, k, k), k, k);
-    Mask out(m.size());
-    shut.get_pixels(OIIO::ROI(r, r + w, r, r + h, 0, 1, 0, 1), OIIO::TypeDesc::UINT8, out.data());
-    return out;
-}
-
-// Visits the 8-connected region of pixels equal to `value` from `start`, marking `seen`;
-// returns its size.
-size_t flood(const Mask& m, int w, int h, size_t start, uint8_t value, std::vector<bool>& seen) {
-    std::vector<size_t> todo{start};
-    seen[start] = true;
-    size_t n = 0;
-    while (!todo.empty()) {
-        const size_t i = todo.back();
-        todo.pop_back();
-        ++n;
-        const int x = static_cast<int>(i % w), y = static_cast<int>(i / w);
-        for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-                const int nx = x + dx, ny = y + dy;
-                if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
-                const size_t j = static_cast<size_t>(ny) * w + nx;
-                if (seen[j] || (m[j] != 0) != (value != 0)) continue;
-                seen[j] = true;
-                todo.push_back(j);
-            }
-    }
-    return n;
-}
 
 // The first index along `counts` (rows or columns) by which `share` of the total lies before
 // it, from the front; from the back when `back`.
@@ -134,19 +89,11 @@ TreeForm measure_form(const SideMasks& m, const Tree& tree) {
         if (clumped[i] && !seen[i])
             f.clumps += flood(clumped, w, h, i, 1, seen) >= kClumpArea * leaves;
 
-    // The outline: the crown closed, and every gap it then encloses (not reached from the
-    // frame's edge) filled.
-    const Mask shut = closed(m.leaf, w, h, static_cast<int>(std::lround(kOutlineRadius * extent)));
-    std::vector<bool> outside(shut.size(), false);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const size_t i = static_cast<size_t>(y) * w + x;
-            const bool edge = x == 0 || y == 0 || x == w - 1 || y == h - 1;
-            if (edge && !shut[i] && !outside[i]) flood(shut, w, h, i, 0, outside);
-        }
+    // The outline: the crown closed, and every gap it then encloses filled.
+    const Mask shut = outline(m.leaf, w, h, static_cast<int>(std::lround(kOutlineRadius * extent)));
     size_t inside = 0, sky = 0;
     for (size_t i = 0; i < shut.size(); ++i) {
-        if (outside[i]) continue;
+        if (!shut[i]) continue;
         ++inside;
         sky += !m.leaf[i] && !m.bark[i];
     }

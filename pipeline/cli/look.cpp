@@ -2,7 +2,9 @@
 // (look_measures.h), one table row; --save writes the frame it measured.
 #include <cstdio>
 
+#include "pipeline/bench/crown_look.h"
 #include "pipeline/bench/look_measures.h"
+#include "pipeline/bench/palette_look.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/frame/paint_frame.h"
 #include "pipeline/input/error.h"
@@ -11,6 +13,33 @@
 #include "pipeline/shot/shot.h"
 
 namespace pleinair {
+
+namespace {
+
+// Trees smaller than this share of the frame are too few pixels for an outline to mean much.
+constexpr double kCrownMinShare = 0.0005;
+
+// The second table: the crowns' median measures (crown_look.h) and the palette (palette_look.h).
+void print_crowns_and_palette(const std::string& name, const Shot& shot, const FrameView& view,
+                              const Frame& f, const Mask& sky) {
+    const size_t min_px =
+        static_cast<size_t>(kCrownMinShare * static_cast<double>(f.width) * f.height);
+    const CrownLook c =
+        median_crown(measure_crowns(tree_pixels(shot, view, f), sky, f.width, f.height, min_px));
+    const PaletteLook p = palette_look(f);
+    std::printf(
+        "\n| scene | crowns | crowns' medians: sky inside / edge / bark inside | chroma: mean / "
+        "p95 | warm accents | L* median | L* in 0-20 / 20-40 / 40-60 / 60-80 / 80-100 "
+        "|\n|---|---:|---:|---:|---:|---:|---:|\n");
+    std::printf(
+        "| %s | %zu | %.3f / %.2f / %.3f | %.1f / %.1f | %.4f | %.1f | %.2f / %.2f / %.2f / %.2f "
+        "/ %.2f |\n",
+        name.c_str(), c.pixels, c.sky, c.edge, c.bark, p.chroma_mean, p.chroma_p95, p.warm,
+        p.lightness_median, p.lightness[0], p.lightness[1], p.lightness[2], p.lightness[3],
+        p.lightness[4]);
+}
+
+}  // namespace
 
 int run_bench_look(const BenchCommand& cmd) {
     const std::string file = resolve_preset("scenes", cmd.scene, "SCENE").string();
@@ -40,20 +69,27 @@ int run_bench_look(const BenchCommand& cmd) {
     const double sky8 = brush_texture(l, f.width, f.height, r.sky, 8);
     const double trees8 = brush_texture(l, f.width, f.height, r.trees, 8);
     const double mirror = mirror_correlation(l, f.width, f.height, r.water, &pairs);
+    const MirrorMatch glass = mirror_match(f, l,
+                                           mirror_sources(f, view.camera, shot.scene.water.level,
+                                                          r.water, water_stroke_id(shot.scene)));
     std::string sets;
     for (const std::string& s : cmd.set) sets += (sets.empty() ? " " : ", ") + s;
     std::printf(
         "| scene | L* texture 5 px: sky / trees | 17 px: sky / trees | sky over trees, 5 / 17 "
-        "px | sky pixels | sky: mean flat run, px | water vs mirrored bank: correlation "
-        "(pairs) | frame |\n|---|---:|---:|---:|---:|---:|---:|---:|\n");
+        "px | sky pixels | sky: mean flat run, px | water vs bank mirrored about the shore: "
+        "correlation (pairs) | water vs what it mirrors: correlation, pixels / 8 px forms "
+        "(pairs) | water over what it mirrors: L* / chroma | frame "
+        "|\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     std::printf(
-        "| %s%s | %.2f / %.2f | %.2f / %.2f | %.2f / %.2f | %llu | %.2f | %.3f (%llu) | "
-        "%.0f ms |\n",
+        "| %s%s | %.2f / %.2f | %.2f / %.2f | %.2f / %.2f | %llu | %.2f | %.3f (%llu) | %.3f / "
+        "%.3f (%llu) | %.2f / %.2f | %.0f ms |\n",
         cmd.scene.c_str(), sets.c_str(), sky2, trees2, sky8, trees8,
         trees2 > 0 ? sky2 / trees2 : 0.0, trees8 > 0 ? sky8 / trees8 : 0.0,
         static_cast<unsigned long long>(sky_px), mean_flat_run(f, r.sky), mirror,
-        static_cast<unsigned long long>(pairs), ms);
+        static_cast<unsigned long long>(pairs), glass.pixels, glass.forms,
+        static_cast<unsigned long long>(glass.pairs), glass.lightness, glass.chroma, ms);
     (void)tree_px;
+    print_crowns_and_palette(cmd.scene + sets, shot, view, f, r.sky);
     return 0;
 }
 

@@ -94,8 +94,13 @@ void set_mirror(const MirrorContext& c, const Color& seen, const glm::vec3& up,
     const float fresnel = water_reflectance(static_cast<float>(glm::dot(dir, glm::dvec3(up))));
     const float amount = amount_max * fresnel;
     const float dim = 1.0f - kNearDarken * amount_max * (1.0f - fresnel);
-    k.mirror = seen * (amount * dim);
+    const Color grey(luminance(seen));
+    k.mirror = mix(grey, seen, clamp01(c.shot.scene.water.mirror_saturation)) * (amount * dim);
     k.mirror_keep = (1.0f - amount) * dim;
+    // Where it mirrors, the water's own colour is its body's, dark (its surface scatters little
+    // light): the stroke's lightness falls with the share the mirror takes, so the reflection
+    // stays darker than what it mirrors.
+    k.lightness *= 1.0f - amount;
 }
 
 int mirror(const MirrorContext& c, const RayOrigin& at, const glm::vec3* normals, int count,

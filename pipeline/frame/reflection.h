@@ -42,11 +42,12 @@ MirrorContext mirror_context(const Shot& shot, const FrameView& view, const Fram
 inline constexpr int kMaxMirrorRays = 16;
 Color mirror_seen(const MirrorContext& c, const RayOrigin& at, const glm::vec3* normals, int count,
                   const glm::dvec3& dir, int& rays);
-// k.mirror and k.mirror_keep from what the mirror saw, in the share water's Fresnel
-// reflectance gives the view `dir` against the water's normal `up`.
+// k.mirror and k.mirror_keep from what the mirror saw (greyed by /water/mirror_saturation), in
+// the share water's Fresnel reflectance gives the view `dir` against the water's normal `up`;
+// k.lightness falls by that share (the water's dark body shows where it does not mirror).
 void set_mirror(const MirrorContext& c, const Color& seen, const glm::vec3& up,
                 const glm::dvec3& dir, StrokeConstants& k);
-// Both for one view: sets k.mirror and k.mirror_keep. Returns the rays cast.
+// Both for one view: set_mirror from mirror_seen. Returns the rays cast.
 int mirror(const MirrorContext& c, const RayOrigin& at, const glm::vec3* normals, int count,
            const glm::vec3& up, const glm::dvec3& dir, StrokeConstants& k);
 

@@ -103,6 +103,10 @@ void visit_water(WaterDesc& w, V& v) {
               "Reflected rays a water stroke averages, each through its own ripple: more keep "
               "its colour from jumping as the camera moves its rays across an edge "
               "(BENCHMARKS.md, \"The Corot look\"), at that many rays' cost.");
+    v.real("mirror_saturation", w.mirror_saturation, {0, 1}, "",
+           "Share of its saturation a mirrored colour keeps (its luminance kept): paint greys a "
+           "reflection, so a green bank lies silver-grey in the water (BENCHMARKS.md, \"A pond "
+           "that mirrors\"). 1: the colour as the ray saw it.");
 }
 
 template <class V>

@@ -116,6 +116,7 @@ struct WaterDesc {
     float reflection = 0.85f;
     float ripple = 0.02f;  // how far ripples lean a stroke's mirror normal, towards a random one
     int mirror_rays = 4;   // reflected rays a water stroke averages
+    float mirror_saturation = 0.6f;  // share of its saturation a mirrored colour keeps
 };
 
 struct RockDesc {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "pipeline/bench/look_measures.h"
 #include "pipeline/frame/lod.h"
@@ -68,6 +69,68 @@ TEST(Look, MirrorCorrelationOfAMirroredImageIsOne) {
     for (int y = shore; y < h; ++y)
         for (int x = 0; x < w; ++x) l[y * w + x] = 30.0f + 5.0f * ((x * 7 + y * 13) % 5);
     EXPECT_LT(std::abs(mirror_correlation(l, w, h, water)), 0.2);
+}
+
+// A wall 50 m away stands on still water; the camera looks at it from 2 m above the water.
+// Painted as a glass mirror (the water's L* a dimmed copy of the wall's at the mirrored point),
+// the water matches what it mirrors at every scale; painted as noise, it does not. The mirror
+// about the shore's row, with the wall set 10 m behind the shore, misses it.
+TEST(Look, AGlassMirrorMatchesWhatItMirrorsWhereverTheBankStands) {
+    CameraParams cp;
+    cp.position = {0, 2, 0}, cp.look_at = {0, 2, -50}, cp.fov = 30;
+    cp.width = 160, cp.height = 120;
+    Camera cam;
+    ASSERT_EQ(make_camera(cp, cam), "");
+    const int w = cp.width, h = cp.height;
+    const double shore = 40, wall = 50;
+    auto pattern = [](const glm::dvec3& p) {  // the wall's L*: bands 3 m apart, faint stripes
+        return float(40.0 + 30.0 * std::sin(p.y * 2.0) + 8.0 * std::sin(p.x * 1.3));
+    };
+    Frame f;
+    f.width = w, f.height = h, f.has_aovs = true;
+    f.rgba.assign(size_t(4) * w * h, 1.0f);
+    f.depth.assign(size_t(w) * h, std::numeric_limits<float>::max());
+    f.object_id.assign(size_t(w) * h, 7.0f);  // every pixel the water's strokes' id
+    std::vector<float> l(size_t(w) * h, 90.0f), noise = l;
+    std::vector<uint8_t> water(size_t(w) * h, 0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * w + x;
+            const glm::dvec3 d = ray_direction(cam, x + 0.5, y + 0.5);
+            const double to_wall = wall / -d.z;
+            glm::dvec3 p = cam.eye + d * to_wall;
+            if (d.y < 0 && cam.eye.y / -d.y < to_wall) {  // the water, then the bank
+                const double t = cam.eye.y / -d.y;
+                const glm::dvec3 q = cam.eye + d * t;
+                if (-q.z < shore) {
+                    water[i] = 1;
+                    // The glass mirror: the eye's ray reflected meets the wall at height -p.y.
+                    glm::dvec3 m = p;
+                    m.y = -m.y;
+                    l[i] = 0.6f * pattern(m) + 8.0f;
+                    noise[i] = float((x * 37 + y * 91) % 17) * 4.0f;
+                    f.depth[i] = float(t * glm::dot(d, cam.forward));
+                    continue;
+                }
+                p = q;  // the bank between the shore and the wall, flat at the water's level
+            }
+            if (p.y >= 0) {
+                l[i] = noise[i] = pattern(p);
+                f.depth[i] = float(glm::length(p - cam.eye) * glm::dot(d, cam.forward));
+            }
+        }
+    const std::vector<uint32_t> src = mirror_sources(f, cam, 0.0, water, 7.0f);
+    const MirrorMatch glass = mirror_match(f, l, src);
+    EXPECT_GT(glass.pairs, 1000u);
+    EXPECT_GT(glass.pixels, 0.95);
+    EXPECT_GT(glass.forms, 0.95);
+    EXPECT_LT(std::abs(mirror_match(f, noise, src).pixels), 0.15);
+    EXPECT_LT(mirror_correlation(l, w, h, water), 0.5) << "the shore's row is not the wall's foot";
+    for (size_t j = 0; j < src.size(); ++j)
+        if (src[j]) {
+            ASSERT_TRUE(water[j]) << j;
+            ASSERT_FALSE(water[src[j] - 1]) << j;
+        }
 }
 
 TEST(Look, FlatRunsAreLongOnAGradientAndShortOnNoise) {
@@ -262,6 +325,38 @@ TEST(Reflection, AMovingCamerasMirrorIsLinearBetweenItsLatticeFrames) {
         EXPECT_EQ(sp.k.mirror_keep, exact[K - 1].sprites[i].k.mirror_keep) << "the frame's share";
     }
     for (int p = 0; p < K; ++p) EXPECT_GT(phases[p], int(water.sprites.size()) / (2 * K)) << p;
+}
+
+// What the water does with what it mirrors (set_mirror): the colour greyed to
+// /water/mirror_saturation with its luminance kept, the water's own lightness lowered by the
+// share the mirror takes (its dark body), and nothing more where it does not mirror.
+TEST(Reflection, AMirrorIsGreyedAndTheWaterDarkensWhereItMirrors) {
+    for (float saturation : {1.0f, 0.6f, 0.0f}) {
+        const Shot shot = build_shot(
+            load_scene(test::source_dir() / "presets" / "scenes" / "mortefontaine-walk.json",
+                       {"/camera/width=160", "/camera/height=90",
+                        "/water/mirror_saturation=" + std::to_string(saturation)}));
+        const FrameSettings fs = scene_frame_settings(shot.scene);
+        const FrameView view = view_at(shot.scene, 0.0);
+        const MirrorContext c =
+            mirror_context(shot, view, plan_frame(shot, fs), fs.render, shot.sun_rays.get());
+        const Color seen(0.05f, 0.4f, 0.1f);
+        const glm::vec3 up(0, 1, 0);
+        for (double down : {0.05, 0.5, 0.99}) {  // grazing, oblique, looking straight down
+            StrokeConstants k;
+            k.lightness = 0.8f;
+            const glm::dvec3 dir = glm::normalize(glm::dvec3(1.0, -down, 0.0));
+            set_mirror(c, seen, up, dir, k);
+            const float amount = shot.scene.water.reflection *
+                                 water_reflectance(float(glm::dot(dir, glm::dvec3(up))));
+            EXPECT_NEAR(k.lightness, 0.8f * (1.0f - amount), 1e-6f);
+            // The mirrored colour over its share: its luminance kept, its spread scaled.
+            const float lum = luminance(k.mirror), want = luminance(seen);
+            const float scale = lum / want;
+            EXPECT_NEAR(k.mirror.x / scale, want + saturation * (seen.x - want), 1e-4f);
+            EXPECT_NEAR(k.mirror.y / scale, want + saturation * (seen.y - want), 1e-4f);
+        }
+    }
 }
 
 // Frames painted in order with the mirrors kept from the frames before are the frames painted
