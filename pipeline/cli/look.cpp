@@ -1,5 +1,6 @@
-// `pleinair bench look SCENE`: the look's measures of a still or of a shot's frame
-// (look_measures.h), one table row; --save writes the frame it measured.
+// `pleinair bench look SCENE`: the look's measures of a still or of a shot's frame, two tables
+// of one row (look_measures.h; crown_look.h and palette_look.h); --save writes the frame it
+// measured.
 #include <cstdio>
 
 #include "pipeline/bench/crown_look.h"
