@@ -11,6 +11,7 @@
 
 #include "pipeline/bench/palette_look.h"
 #include "pipeline/frame/frame_view.h"
+#include "pipeline/frame/sprite.h"
 #include "pipeline/input/camera.h"
 #include "pipeline/shot/shot.h"
 #include "shading/color.h"
@@ -169,10 +170,29 @@ LookRegions look_regions(const Shot& shot, const FrameView& view, const Frame& f
     return r;
 }
 
-double mirror_correlation(const std::vector<float>& l, int w, int h,
-                          const std::vector<uint8_t>& water, uint64_t* pairs) {
+namespace {
+
+// Pearson's correlation of pairs, summed as they come; 0 under 16 pairs or without spread.
+struct Pearson {
     double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
     uint64_t n = 0;
+    void add(double a, double b) {
+        sa += a, sb += b, saa += a * a, sbb += b * b, sab += a * b, ++n;
+    }
+    double r() const {
+        if (n < 16) return 0.0;
+        const double N = static_cast<double>(n);
+        const double cov = sab / N - sa / N * sb / N;
+        const double va = saa / N - sa / N * sa / N, vb = sbb / N - sb / N * sb / N;
+        return va > 0 && vb > 0 ? cov / std::sqrt(va * vb) : 0.0;
+    }
+};
+
+}  // namespace
+
+double mirror_correlation(const std::vector<float>& l, int w, int h,
+                          const std::vector<uint8_t>& water, uint64_t* pairs) {
+    Pearson r;
     for (int x = 0; x < w; ++x) {
         int shore = -1;
         for (int y = 0; y < h; ++y) {
@@ -183,22 +203,15 @@ double mirror_correlation(const std::vector<float>& l, int w, int h,
             if (my < 0) continue;
             const size_t j = static_cast<size_t>(my) * w + x;
             if (water[j]) continue;
-            const double a = l[i], b = l[j];
-            sa += a, sb += b, saa += a * a, sbb += b * b, sab += a * b;
-            ++n;
+            r.add(l[i], l[j]);
         }
     }
-    if (pairs) *pairs = n;
-    if (n < 16) return 0.0;
-    const double N = double(n);
-    const double cov = sab / N - sa / N * sb / N;
-    const double va = saa / N - sa / N * sa / N, vb = sbb / N - sb / N * sb / N;
-    return va > 0 && vb > 0 ? cov / std::sqrt(va * vb) : 0.0;
+    if (pairs) *pairs = r.n;
+    return r.r();
 }
 
 float water_stroke_id(const SceneDesc& scene) {
-    // A surface stroke's id is 0x10000 + its scene material (sprites.cpp).
-    return static_cast<float>(0x10000u + scene.water.material);
+    return static_cast<float>(surface_object_id(scene.water.material));
 }
 
 std::vector<uint32_t> mirror_sources(const Frame& f, const Camera& cam, double level,
@@ -229,32 +242,6 @@ std::vector<uint32_t> mirror_sources(const Frame& f, const Camera& cam, double l
     return src;
 }
 
-namespace {
-
-struct Pearson {
-    double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
-    uint64_t n = 0;
-    void add(double a, double b) {
-        sa += a, sb += b, saa += a * a, sbb += b * b, sab += a * b, ++n;
-    }
-    double r() const {
-        if (n < 16) return 0.0;
-        const double N = static_cast<double>(n);
-        const double cov = sab / N - sa / N * sb / N;
-        const double va = saa / N - sa / N * sa / N, vb = sbb / N - sb / N * sb / N;
-        return va > 0 && vb > 0 ? cov / std::sqrt(va * vb) : 0.0;
-    }
-};
-
-float chroma_at(const Frame& f, size_t i) {
-    const float a = f.rgba[4 * i + 3], k = a > 0 ? 1.0f / a : 0.0f;
-    const auto lab =
-        linear_srgb_to_lab(f.rgba[4 * i] * k, f.rgba[4 * i + 1] * k, f.rgba[4 * i + 2] * k);
-    return pmath::hypot(lab[1], lab[2]);
-}
-
-}  // namespace
-
 MirrorMatch mirror_match(const Frame& f, const std::vector<float>& l,
                          const std::vector<uint32_t>& src) {
     MirrorMatch m;
@@ -264,7 +251,7 @@ MirrorMatch mirror_match(const Frame& f, const std::vector<float>& l,
         if (!src[j]) continue;
         const size_t i = src[j] - 1;
         px.add(l[j], l[i]);
-        lw += l[j], ls += l[i], cw += chroma_at(f, j), cs += chroma_at(f, i);
+        lw += l[j], ls += l[i], cw += pixel_chroma(f, j), cs += pixel_chroma(f, i);
     }
     const int B = kMirrorBlock;
     for (int by = 0; by + B <= f.height; by += B)

@@ -1,4 +1,4 @@
-// linear_srgb_to_lab and palette_look.
+// linear_srgb_to_lab, pixel_lab, pixel_chroma and palette_look.
 #include "pipeline/bench/palette_look.h"
 
 #include <algorithm>
@@ -24,6 +24,17 @@ std::array<float, 3> linear_srgb_to_lab(float r, float g, float b) {
             static_cast<float>(200.0 * (fy - fz))};
 }
 
+std::array<float, 3> pixel_lab(const Frame& f, size_t i) {
+    // Premultiplied over the opaque background: alpha is 1 wherever the frame is painted.
+    const float a = f.rgba[4 * i + 3], k = a > 0 ? 1.0f / a : 0.0f;
+    return linear_srgb_to_lab(f.rgba[4 * i] * k, f.rgba[4 * i + 1] * k, f.rgba[4 * i + 2] * k);
+}
+
+float pixel_chroma(const Frame& f, size_t i) {
+    const auto lab = pixel_lab(f, i);
+    return pmath::hypot(lab[1], lab[2]);
+}
+
 PaletteLook palette_look(const Frame& f) {
     PaletteLook p;
     const size_t n = static_cast<size_t>(f.width) * f.height;
@@ -32,11 +43,7 @@ PaletteLook palette_look(const Frame& f) {
     double sum = 0;
     size_t warm = 0;
     for (size_t i = 0; i < n; ++i) {
-        // Premultiplied over the opaque background: alpha is 1 wherever the frame is painted.
-        const float a = f.rgba[4 * i + 3];
-        const float k = a > 0 ? 1.0f / a : 0.0f;
-        const auto lab =
-            linear_srgb_to_lab(f.rgba[4 * i] * k, f.rgba[4 * i + 1] * k, f.rgba[4 * i + 2] * k);
+        const auto lab = pixel_lab(f, i);
         const float c = pmath::hypot(lab[1], lab[2]);
         chroma[i] = c, lightness[i] = lab[0];
         sum += c;

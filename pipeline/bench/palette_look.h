@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 
 #include "pipeline/frame/frame_image.h"
 
@@ -12,6 +13,10 @@ namespace pleinair {
 // OpenImageIO's colour configurations have no CIELAB; the sRGB primaries' matrix and the
 // CIE 1976 formulas.
 std::array<float, 3> linear_srgb_to_lab(float r, float g, float b);
+
+// CIELAB of a frame's pixel i (its premultiplied colour over its alpha), and its chroma.
+std::array<float, 3> pixel_lab(const Frame& frame, size_t i);
+float pixel_chroma(const Frame& frame, size_t i);
 
 // A warm accent: chroma at least kWarmChroma, hue angle (atan2(b*, a*)) within kWarmHue degrees
 // of kWarmHueCentre: saturated reds, oranges and ochres; Corot's browns are duller than this.

@@ -9,6 +9,10 @@
 
 namespace pleinair {
 
+// The object id a surface stroke of scene material `material` carries in the frame's AOV:
+// after every tree's (tree id + 1 stays below it).
+inline uint32_t surface_object_id(uint32_t material) { return 0x10000u + material; }
+
 struct Sprite {
     float x = 0, y = 0, depth = 0;
     float range = 0;  // distance from the eye: what the depth order sorts by
@@ -23,7 +27,7 @@ struct Sprite {
     int32_t grid = -1;   // its shadow grid, with shadows per fragment
     int32_t patch = -1;  // a graftal's patch in SpriteSet::patches
     MaterialId material;
-    uint32_t object_id = 0;
+    uint32_t object_id = 0;  // frame_image.h's AOV: see surface_object_id for surfaces
     SpriteKind kind = SpriteKind::kLeaf;
     // Which particle: stable from frame to frame (the coherence bench follows it).
     uint32_t item = 0, particle = 0;

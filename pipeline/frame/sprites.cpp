@@ -131,7 +131,7 @@ void shade_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in,
         if (in.shadow < 1.0f) l *= shadow_remap(in.shadow, p.shadow_bias);
         out.k.lightness = l;
         surface_frequencies(*m.surface, h, out.k.frequ_s, out.k.frequ_t);
-        out.object_id = 0x10000u + S.material[in.index];
+        out.object_id = surface_object_id(S.material[in.index]);
         if (in.own_color) {
             out.k.own = *in.own_color / m.mid_luminance;
             out.k.own_amount = in.own_amount;
