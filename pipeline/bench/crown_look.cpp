@@ -76,6 +76,7 @@ CrownLook measure_crown(const TreePixels& t, uint32_t id, const Box& b, const Ma
         }
     CrownLook c;
     c.pixels = b.pixels;
+    c.area = area;
     if (area == 0) return c;
     const double a = static_cast<double>(area);
     c.sky = static_cast<double>(open) / a;
@@ -117,6 +118,20 @@ CrownLook median_crown(std::vector<CrownLook> crowns) {
     };
     m.sky = median(&CrownLook::sky), m.edge = median(&CrownLook::edge);
     m.bark = median(&CrownLook::bark);
+    return m;
+}
+
+CrownLook pooled_crown(const std::vector<CrownLook>& crowns) {
+    CrownLook m;
+    m.pixels = crowns.size();
+    double area = 0, sky = 0, bark = 0, edge = 0;
+    for (const CrownLook& c : crowns) {
+        const double a = static_cast<double>(c.area);
+        area += a, sky += c.sky * a, bark += c.bark * a, edge += c.edge * a;
+    }
+    if (area == 0) return m;
+    m.area = static_cast<size_t>(area);
+    m.sky = sky / area, m.bark = bark / area, m.edge = edge / area;
     return m;
 }
 

@@ -27,6 +27,7 @@ TreePixels tree_pixels(const Shot& shot, const FrameView& view, const Frame& fra
 // kOutlineRadius of their larger extent, with what that encloses.
 struct CrownLook {
     size_t pixels = 0;  // the tree's own pixels
+    size_t area = 0;    // the outline's pixels
     double sky = 0;     // open-sky pixels inside the outline, over the outline's area
     double edge = 0;    // the length of its pixels' edge (their holes filled) over the square
                         // root of the outline's area: 4.5 for a disc, more as touches break it
@@ -42,5 +43,12 @@ std::vector<CrownLook> measure_crowns(const TreePixels& trees, const Mask& sky, 
 // The median of each measure over the crowns (zeros when there are none); `pixels` is the
 // crowns' count.
 CrownLook median_crown(std::vector<CrownLook> crowns);
+
+// The crowns as the eye meets them, each weighed by its outline's area: the sky and bark inside
+// all the outlines over their whole area, and the edge's mean weighed by area. A great tree
+// near the camera counts for what it covers, not as one of forty distant masses (the far bank
+// of a Corot is a soft mass with no holes; its near crowns are where the sky shows through).
+// `pixels` is the crowns' count.
+CrownLook pooled_crown(const std::vector<CrownLook>& crowns);
 
 }  // namespace pleinair

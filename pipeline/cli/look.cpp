@@ -25,19 +25,20 @@ void print_crowns_and_palette(const std::string& name, const Shot& shot, const F
                               const Frame& f, const Mask& sky) {
     const size_t min_px =
         static_cast<size_t>(kCrownMinShare * static_cast<double>(f.width) * f.height);
-    const CrownLook c =
-        median_crown(measure_crowns(tree_pixels(shot, view, f), sky, f.width, f.height, min_px));
+    const std::vector<CrownLook> crowns =
+        measure_crowns(tree_pixels(shot, view, f), sky, f.width, f.height, min_px);
+    const CrownLook c = median_crown(crowns), a = pooled_crown(crowns);
     const PaletteLook p = palette_look(f);
     std::printf(
-        "\n| scene | crowns | crowns' medians: sky inside / edge / bark inside | chroma: mean / "
-        "p95 | warm accents | L* median | L* in 0-20 / 20-40 / 40-60 / 60-80 / 80-100 "
-        "|\n|---|---:|---:|---:|---:|---:|---:|\n");
+        "\n| scene | crowns | crowns' medians: sky inside / edge / bark inside | weighed by area: "
+        "sky inside / edge / bark inside | chroma: mean / p95 | warm accents | L* median | L* in "
+        "0-20 / 20-40 / 40-60 / 60-80 / 80-100 |\n|---|---:|---:|---:|---:|---:|---:|---:|\n");
     std::printf(
-        "| %s | %zu | %.3f / %.2f / %.3f | %.1f / %.1f | %.4f | %.1f | %.2f / %.2f / %.2f / %.2f "
-        "/ %.2f |\n",
-        name.c_str(), c.pixels, c.sky, c.edge, c.bark, p.chroma_mean, p.chroma_p95, p.warm,
-        p.lightness_median, p.lightness[0], p.lightness[1], p.lightness[2], p.lightness[3],
-        p.lightness[4]);
+        "| %s | %zu | %.3f / %.2f / %.3f | %.3f / %.2f / %.3f | %.1f / %.1f | %.4f | %.1f | %.2f / "
+        "%.2f / %.2f / %.2f / %.2f |\n",
+        name.c_str(), c.pixels, c.sky, c.edge, c.bark, a.sky, a.edge, a.bark, p.chroma_mean,
+        p.chroma_p95, p.warm, p.lightness_median, p.lightness[0], p.lightness[1], p.lightness[2],
+        p.lightness[3], p.lightness[4]);
 }
 
 }  // namespace

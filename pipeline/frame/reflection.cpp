@@ -31,17 +31,49 @@ float water_reflectance(float cos_view) {
 
 MirrorContext mirror_context(const Shot& shot, const FrameView& view, const FramePlan& plan,
                              const RenderSettings& settings, const RayScene* sun_rays) {
-    MirrorContext c{shot, view, plan, settings, nullptr, Color(0.0f), FramePlan{}};
+    MirrorContext c{shot, view, plan, settings, nullptr, {}, FramePlan{}};
     if (sun_rays && sun_rays->caster_count() > 0) c.sun_rays = sun_rays;
     // Built once: copying the plan's notes for every ray cost an allocation per ray.
     c.flat = plan;
     c.flat.decisions.clear();
-    c.flat.atmosphere = false;
     c.flat.reflections = false;
-    const auto& fams = shot.scene.families;
-    for (const Family& f : fams) c.foliage += palette_lookup(f.leaf_palette, 0.3f);
-    if (!fams.empty()) c.foliage /= static_cast<float>(fams.size());
+    // What the water mirrors keeps the haze it has where it stands (the far bank mirrored as
+    // pale and blue as it is seen); the water's own atmosphere comes after, on the mirror.
+    const SceneDesc& scene = shot.scene;
+    const bool haze = plan.atmosphere && scene.has_atmosphere;
+    const int steps = haze ? MirrorContext::kFoliageDepths : 1;
+    c.foliage.assign(static_cast<size_t>(steps), Color(0.0f));
+    if (scene.families.empty()) return c;
+    for (int i = 0; i < steps; ++i) {
+        const float depth =
+            static_cast<float>(scene.atmosphere.near_distance +
+                               (scene.atmosphere.far_distance - scene.atmosphere.near_distance) *
+                                   i / std::max(steps - 1, 1));
+        for (const Family& f : scene.families) {
+            const StrokeShaderParams& p = f.leaf_shader;
+            const bool on = haze && has_atmosphere_effect(p);
+            const float d = on ? distance_value(depth, scene.atmosphere.near_distance,
+                                                scene.atmosphere.far_distance, p.dist_curve_bias)
+                               : 0.0f;
+            const StrokeConstants k =
+                stroke_constants(p, 0.5f, 0.5f, 0.5f, 0.5f, 0, 1.0f, d, 0.0f, false, on);
+            c.foliage[static_cast<size_t>(i)] +=
+                finish_color(k, palette_lookup(f.leaf_palette, 0.3f));
+        }
+        c.foliage[static_cast<size_t>(i)] /= static_cast<float>(scene.families.size());
+    }
     return c;
+}
+
+Color mirrored_foliage(const MirrorContext& c, float depth) {
+    if (c.foliage.size() < 2) return c.foliage.empty() ? Color(0.0f) : c.foliage[0];
+    const auto& a = c.shot.scene.atmosphere;
+    const float span = static_cast<float>(a.far_distance - a.near_distance);
+    const float u = span > 0.0f ? clamp01((depth - static_cast<float>(a.near_distance)) / span)
+                                : (depth >= static_cast<float>(a.far_distance) ? 1.0f : 0.0f);
+    const float x = u * static_cast<float>(c.foliage.size() - 1);
+    const size_t i = std::min(static_cast<size_t>(x), c.foliage.size() - 2);
+    return mix(c.foliage[i], c.foliage[i + 1], x - static_cast<float>(i));
 }
 
 namespace {
@@ -60,8 +92,8 @@ Color mirrored(const MirrorContext& c, const RayOrigin& at, const glm::vec3& n,
     ++rays;
     Color seen;
     if (h.hit) {
-        // The hit's own flat colour, as the underpainting paints it (it casts its shadow ray);
-        // the water's atmosphere comes after, on the mirrored colour.
+        // The hit's own flat colour, as the underpainting paints it (it casts its shadow ray),
+        // in the haze of its own depth; the water's atmosphere comes after, on the mirror.
         seen = surface_hit_color(c.shot, c.view, c.flat, c.settings, c.sun_rays, h,
                                  from + r * static_cast<double>(h.t), h.normal, r);
         rays += c.flat.shadows && c.sun_rays;
@@ -70,11 +102,16 @@ Color mirrored(const MirrorContext& c, const RayOrigin& at, const glm::vec3& n,
                           : background_at(scene.background, r);
     }
     if (c.sun_rays) {
-        // Leaf strokes between the water and what it mirrors, as the sun's casters.
-        const float through = c.sun_rays->transmittance(
-            from, rf, c.settings.shadows,
-            h.hit ? h.t * 0.999f : std::numeric_limits<float>::infinity(), at.surface_normal());
-        seen = mix(c.foliage, seen, through);
+        // Leaf strokes between the water and what it mirrors, as the sun's casters, hazed at
+        // the camera depth of where the ray meets them.
+        float t = 0.0f;
+        const float through = c.sun_rays->transmittance_depth(
+            from, rf, h.hit ? h.t * 0.999f : std::numeric_limits<float>::infinity(),
+            at.surface_normal(), t);
+        const Camera& cam = c.view.camera;
+        const glm::dvec3 leaves = from + r * static_cast<double>(t);
+        seen = mix(mirrored_foliage(c, static_cast<float>(glm::dot(leaves - cam.eye, cam.forward))),
+                   seen, through);
         ++rays;
     }
     return seen;

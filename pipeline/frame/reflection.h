@@ -31,9 +31,15 @@ struct MirrorContext {
     const FramePlan& plan;  // the frame's; hits are coloured without atmosphere or mirrors
     const RenderSettings& settings;
     const RayScene* sun_rays = nullptr;  // the leaf strokes' casters, when the frame has them
-    Color foliage{0.0f};  // a reflected leaf stroke: the families' leaf palettes in shade
-    FramePlan flat;       // the plan hits are coloured by: no atmosphere, no mirror, no notes
+    // A reflected leaf stroke: the families' leaf palettes in shade, each pushed into the
+    // distance by its leaf shader's atmosphere at kFoliageDepths camera depths from the
+    // atmosphere's near to its far (one colour when the frame has no atmosphere).
+    static constexpr int kFoliageDepths = 33;
+    std::vector<Color> foliage;
+    FramePlan flat;  // the plan hits are coloured by: the frame's atmosphere, no mirror, no notes
 };
+// The reflected leaves' colour at a camera depth (MirrorContext::foliage, interpolated).
+Color mirrored_foliage(const MirrorContext& c, float depth);
 MirrorContext mirror_context(const Shot& shot, const FrameView& view, const FramePlan& plan,
                              const RenderSettings& settings, const RayScene* sun_rays);
 

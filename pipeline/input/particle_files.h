@@ -43,6 +43,7 @@ struct ParticleFileDesc {
     std::string size, label, normal, color;
     double size_to_width = 2;  // stroke width per unit of size (2: the size is a radius)
     float color_amount = 1;    // how much of the stroke's hue comes from the file's colour
+    bool on_terrain = false;   // y is the height above the scene's terrain, as a tree's
     std::shared_ptr<const ImportedParticles> particles;  // read when the scene is parsed
 };
 

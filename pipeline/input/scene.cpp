@@ -208,6 +208,10 @@ void visit_particle_file(ParticleFileDesc& p, V& v) {
     v.real("color_amount", p.color_amount, {0, 1}, "",
            "How much of a stroke's colour is the file's, painted at the lightness the shader "
            "picks from the palette (so shadows stay painted, never black); 0: the palette's.");
+    v.boolean("on_terrain", p.on_terrain,
+              "Each particle's y is its height above the terrain at its (x, z), as a tree's "
+              "position is: a scatter laid out on flat ground sits on the hills (needs "
+              "/terrain). Off: y is the world's.");
 }
 
 template <class V>
@@ -549,6 +553,69 @@ int32_t find_material(const SceneDesc& s, const std::string& name, const std::st
     return -1;
 }
 
+// A family's edits of its presets (`tree`, `leaf_shader_keys`, `bark_shader_keys`) and a
+// material's of its shader (`shader_keys`): an object
+// laid out as the preset file, turned into the preset's "POINTER=VALUE" overrides, one per
+// value that is not an object (a gaussian parameter's {"base", "var"} is two).
+void flatten_edits(const json& v, const std::string& ptr, std::vector<std::string>& out) {
+    if (v.is_object() && !v.empty()) {
+        for (const auto& [key, child] : v.items())
+            flatten_edits(child, ptr + "/" + pointer_token(key), out);
+        return;
+    }
+    out.push_back(ptr + "=" + v.dump());
+}
+
+// Reads the family's (or material's) edit object `key` (absent: none) into preset overrides.
+std::vector<std::string> family_edits(const json& f, const char* key, const std::string& ptr,
+                                      std::vector<Problem>& problems) {
+    std::vector<std::string> edits;
+    const auto it = f.find(key);
+    if (it == f.end()) return edits;
+    if (!it->is_object()) {
+        problems.push_back({ptr + "/" + key,
+                            "expected an object of the preset's keys, laid out "
+                            "as its file, got " +
+                                describe(*it)});
+        return edits;
+    }
+    for (const auto& [k, child] : it->items()) flatten_edits(child, "/" + pointer_token(k), edits);
+    return edits;
+}
+
+// Runs fn (which loads a preset with `edits` as overrides). A problem at an edited key is the
+// scene's own, at ptr + that key (the user wrote it here); any other is the preset file's,
+// named at `file_ptr` as load_into names it.
+template <class Fn>
+void load_edited(std::vector<Problem>& problems, const std::string& source,
+                 const std::string& file_ptr, const std::string& edit_ptr,
+                 const std::vector<std::string>& edits, Fn&& fn) {
+    try {
+        fn();
+    } catch (const InputError& e) {
+        static const std::string kMark = " (set by --set)";
+        for (const auto& p : e.problems()) {
+            if (e.source() == source) {  // the scene's own key (a preset name not found)
+                problems.push_back(p);
+                continue;
+            }
+            bool edited = false;
+            for (const auto& o : edits)
+                edited = edited || p.pointer.starts_with(o.substr(0, o.find('=')));
+            if (p.pointer.starts_with("--set")) edited = true;
+            std::string message = p.message;
+            if (message.ends_with(kMark)) message.resize(message.size() - kMark.size());
+            if (edited)
+                problems.push_back(
+                    {edit_ptr + (p.pointer.starts_with("--set") ? "" : p.pointer), message});
+            else
+                problems.push_back(
+                    {file_ptr,
+                     e.source() + (p.pointer.empty() ? "" : ": " + p.pointer) + ": " + p.message});
+        }
+    }
+}
+
 // Materials, terrain, water and rocks: the landscape under the trees (IV.7).
 void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
                      std::vector<Problem>& problems, std::set<std::string>& plain) {
@@ -571,7 +638,12 @@ void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
                 r.text("palette", palette, "");
                 r.text("style", mat.style, "");
                 r.text("imposters", mat.imposters_name, "");
+                r.claim("shader_keys");
                 r.finish();
+                // Edits of the shader preset laid out as its file, as a family's
+                // leaf_shader_keys: one scene's haze or stroke size without a new preset.
+                const std::vector<std::string> edits =
+                    family_edits(m, "shader_keys", ptr, problems);
                 mat.name = name;
                 mat.graftal = load_style(mat.style, source, ptr + "/style", problems);
                 mat.imposters =
@@ -582,8 +654,15 @@ void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
                     continue;
                 }
                 load_into(problems, source, ptr + "/shader", [&] {
-                    ShaderPreset sp =
-                        load_shader_preset(near_scene(shader, source), source, ptr + "/shader");
+                    ShaderPreset sp;
+                    bool loaded = false;
+                    load_edited(problems, source, ptr + "/shader", ptr + "/shader_keys", edits,
+                                [&] {
+                                    sp = load_shader_preset(near_scene(shader, source), source,
+                                                            ptr + "/shader", edits);
+                                    loaded = true;
+                                });
+                    if (!loaded) return;
                     if (!sp.has_surface)
                         throw InputError(source, ptr + "/shader",
                                          "shader \"" + shader +
@@ -711,9 +790,17 @@ void load_particle_files(const std::string& source, SceneDesc& s, std::vector<Pr
             file = fs::path(source).parent_path() / file;
         load_into(problems, source, ptr, [&] {
             const std::string data = read_input_file(file, "particle_file_mb");
-            p.particles = std::make_shared<const ImportedParticles>(
+            ImportedParticles in =
                 import_particles(data, file.string(), p, hash_keys(0x706c79, i),
-                                 glm::vec3(s.sun_direction), kMaxWorldCoordinate));
+                                 glm::vec3(s.sun_direction), kMaxWorldCoordinate);
+            if (p.on_terrain && !s.terrain.present)
+                throw InputError(source, "/particles/" + std::to_string(i) + "/on_terrain",
+                                 "needs a /terrain to stand on");
+            if (p.on_terrain)
+                for (glm::vec3& q : in.strokes.position)
+                    q.y += static_cast<float>(
+                        terrain_height(s.terrain.params, s.terrain.seed, q.x, q.z));
+            p.particles = std::make_shared<const ImportedParticles>(std::move(in));
         });
     }
 }
@@ -825,68 +912,6 @@ void parse_groups(const json& doc, SceneDesc& s, std::vector<Problem>& problems,
                   if (s.water.present) g.params.water_level = s.water.level + 0.05;
                   if (!g.families.empty()) s.groups.push_back(std::move(g));
               });
-}
-
-// A family's edits of its presets (`tree`, `leaf_shader_keys`, `bark_shader_keys`): an object
-// laid out as the preset file, turned into the preset's "POINTER=VALUE" overrides, one per
-// value that is not an object (a gaussian parameter's {"base", "var"} is two).
-void flatten_edits(const json& v, const std::string& ptr, std::vector<std::string>& out) {
-    if (v.is_object() && !v.empty()) {
-        for (const auto& [key, child] : v.items())
-            flatten_edits(child, ptr + "/" + pointer_token(key), out);
-        return;
-    }
-    out.push_back(ptr + "=" + v.dump());
-}
-
-// Reads the family's edit object `key` (absent: none) into preset overrides.
-std::vector<std::string> family_edits(const json& f, const char* key, const std::string& ptr,
-                                      std::vector<Problem>& problems) {
-    std::vector<std::string> edits;
-    const auto it = f.find(key);
-    if (it == f.end()) return edits;
-    if (!it->is_object()) {
-        problems.push_back({ptr + "/" + key,
-                            "expected an object of the preset's keys, laid out "
-                            "as its file, got " +
-                                describe(*it)});
-        return edits;
-    }
-    for (const auto& [k, child] : it->items()) flatten_edits(child, "/" + pointer_token(k), edits);
-    return edits;
-}
-
-// Runs fn (which loads a preset with `edits` as overrides). A problem at an edited key is the
-// scene's own, at ptr + that key (the user wrote it here); any other is the preset file's,
-// named at `file_ptr` as load_into names it.
-template <class Fn>
-void load_edited(std::vector<Problem>& problems, const std::string& source,
-                 const std::string& file_ptr, const std::string& edit_ptr,
-                 const std::vector<std::string>& edits, Fn&& fn) {
-    try {
-        fn();
-    } catch (const InputError& e) {
-        static const std::string kMark = " (set by --set)";
-        for (const auto& p : e.problems()) {
-            if (e.source() == source) {  // the scene's own key (a preset name not found)
-                problems.push_back(p);
-                continue;
-            }
-            bool edited = false;
-            for (const auto& o : edits)
-                edited = edited || p.pointer.starts_with(o.substr(0, o.find('=')));
-            if (p.pointer.starts_with("--set")) edited = true;
-            std::string message = p.message;
-            if (message.ends_with(kMark)) message.resize(message.size() - kMark.size());
-            if (edited)
-                problems.push_back(
-                    {edit_ptr + (p.pointer.starts_with("--set") ? "" : p.pointer), message});
-            else
-                problems.push_back(
-                    {file_ptr,
-                     e.source() + (p.pointer.empty() ? "" : ": " + p.pointer) + ": " + p.message});
-        }
-    }
 }
 
 // Families: an object of name -> {preset, leaf_shader, bark_shader, leaf_palette?, ...}.

@@ -59,6 +59,11 @@ struct ShadowContext {
     // the order Embree reports the cards in, so neither do the bytes of the image.
     uint64_t depth = 0;
     bool blocked = false;
+    // A mirror's ray (transmittance_depth): every card along it is counted (none blocks), and
+    // the distances of the cards, weighed by the depth each adds, summed in fixed point (1/64 of
+    // a unit), so the sum, like the depth, does not depend on the order of the cards.
+    bool through = false;
+    uint64_t depth_distance = 0;
     // Embree may report a primitive more than once (spatial splits): count each card once,
     // keyed by its instance (or geometry) and primitive.
     static constexpr int kSeen = 32;
@@ -158,14 +163,20 @@ bool seen_before(ShadowContext* sc, uint64_t key) {
 
 // Adds a card of opacity a to the ray's optical depth; true when the ray is now blocked
 // (the hit is accepted and the query ends), false to keep walking through the cards.
-bool absorb(ShadowContext* sc, float a) {
-    if (sc->mode == ShadowMode::kThreshold) {
+// `t` is the card's distance along the ray.
+bool absorb(ShadowContext* sc, float a, float t) {
+    if (sc->mode == ShadowMode::kThreshold && !sc->through) {
         if (a > 0.5f) sc->blocked = true;
         return sc->blocked;
     }
     if (a > 0.0f) {
-        sc->depth +=
+        const uint64_t d =
             static_cast<uint64_t>(std::lround(-pmath::log2(std::max(1.0f - a, 1e-6f)) * 65536.0f));
+        sc->depth += d;
+        if (sc->through) {
+            sc->depth_distance += d * static_cast<uint64_t>(std::lround(std::max(t, 0.0f) * 64.0f));
+            return false;
+        }
         if (sc->depth >= kOpaqueDepth) sc->blocked = true;
     }
     return sc->blocked;
@@ -188,7 +199,8 @@ void caster_filter(const RTCFilterFunctionNArguments* args) {
         const uint32_t prim = RTCHitN_primID(args->hit, args->N, i);
         const uint64_t geom = 0x80000000u | RTCHitN_geomID(args->hit, args->N, i);
         if (seen_before(sc, geom << 32 | prim) ||
-            !absorb(sc, caster_opacity(*set, prim, ray_org(args, i), ray_dir(args, i))))
+            !absorb(sc, caster_opacity(*set, prim, ray_org(args, i), ray_dir(args, i)),
+                    RTCRayN_tfar(args->ray, args->N, i)))
             args->valid[i] = 0;  // reject: keep walking through the cards
     }
 }
@@ -234,7 +246,7 @@ void member_occluded(const RTCOccludedFunctionNArguments* args) {
             continue;
         if (seen_before(sc, inst << 32 | prim)) continue;
         set_sun_frame(sc, dir);
-        if (absorb(sc, member_opacity(m->casters, m->cards[prim], prim, *sc, org)))
+        if (absorb(sc, member_opacity(m->casters, m->cards[prim], prim, *sc, org), t))
             RTCRayN_tfar(args->ray, args->N, i) = -std::numeric_limits<float>::infinity();
     }
 }
@@ -590,6 +602,28 @@ float RayScene::transmittance(const glm::dvec3& origin, const glm::vec3& dir, Sh
     fill_ray(r, origin, impl_->anchor, dir, tmax, n);
     rtcOccluded1(impl_->casters, &sc.ctx, &r);
     if (r.tfar < 0 || sc.blocked) return 0.0f;
+    return pmath::exp2(-static_cast<float>(sc.depth) / 65536.0f);
+}
+
+float RayScene::transmittance_depth(const glm::dvec3& origin, const glm::vec3& dir, float tmax,
+                                    const glm::vec3* n, float& distance) const {
+    distance = 0.0f;
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay r;
+    fill_ray(r, origin, impl_->anchor, dir, tmax, n);
+    rtcOccluded1(impl_->scene, &ctx, &r);
+    if (r.tfar < 0) return 0.0f;
+    if (!impl_->casters || impl_->caster_total == 0) return 1.0f;
+    ShadowContext sc;
+    rtcInitIntersectContext(&sc.ctx);
+    sc.through = true;
+    fill_ray(r, origin, impl_->anchor, dir, tmax, n);
+    rtcOccluded1(impl_->casters, &sc.ctx, &r);
+    if (sc.depth > 0)
+        distance = static_cast<float>(static_cast<double>(sc.depth_distance) /
+                                      (64.0 * static_cast<double>(sc.depth)));
+    if (sc.depth >= kOpaqueDepth) return 0.0f;
     return pmath::exp2(-static_cast<float>(sc.depth) / 65536.0f);
 }
 

@@ -187,6 +187,12 @@ class RayScene {
     float transmittance(const glm::dvec3& origin, const glm::vec3& direction, ShadowMode mode,
                         float tmax = std::numeric_limits<float>::infinity(),
                         const glm::vec3* surface_normal = nullptr) const;
+    // transmittance (kTransmissive) that walks through every card, none blocking, and gives in
+    // `distance` the cards' mean distance along the ray weighed by the light each takes (0
+    // when none): where a mirror's ray meets the leaves it mirrors, for their haze. Light under
+    // a thousandth counts as none, as transmittance's.
+    float transmittance_depth(const glm::dvec3& origin, const glm::vec3& direction, float tmax,
+                              const glm::vec3* surface_normal, float& distance) const;
 
   private:
     uint32_t attach(void* geometry, const glm::mat3& normal_to_world);  // an RTCGeometry
