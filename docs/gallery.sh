@@ -41,9 +41,9 @@ rewrites this page; it refuses an image over 200 KB.
 
 ## The Corot look against the thesis's (issue 13)
 
-`mortefontaine-thesis` is the default scene as pleinair painted it before issue 13 (the same
-bytes as the earlier default); `mortefontaine` is it now. Left the thesis's, right the Corot
-look.
+`mortefontaine-thesis` is the default scene painted as pleinair painted before issue 13 (the
+background's gradient for a sky, water that mirrors nothing, crowns lit leaf by leaf);
+`mortefontaine` is it now. Left the thesis's, right the Corot look.
 
 EOF
 
@@ -72,7 +72,7 @@ cat >> "$MD" <<'EOF'
 | The whole scene. `pleinair render mortefontaine-thesis -o thesis.png`, `pleinair render mortefontaine -o corot.png` | ![](gallery/whole.jpg) |
 | The sky (§1): the gradient under slow noise, and `corot-sky`'s strokes at infinity, lit from the sun's side, thinning into the horizon's haze. | ![](gallery/sky.jpg) |
 | The pond (§2): grey ticks, and strokes mirroring the far bank's trees, trunks and sky, darker towards the viewer. | ![](gallery/water.jpg) |
-| The birch up close (§4): light blots everywhere, and lights gathered on the sunlit (left) side, smaller broken strokes and holes at the crown's edge. | ![](gallery/crown.jpg) |
+| The great oak up close (§4): light blots everywhere, and lights gathered on the sunlit (left) side, smaller broken strokes and holes at the crown's edge. | ![](gallery/crown.jpg) |
 | Alpha blending in linear RGB, and pigment mixing (§3, `pleinair render mortefontaine-paint --set /render/canvas_weave=0 -o pigment.png`): thin greens over the sky's blue-greys and creams mix towards yellow-olive as paint does. | ![](gallery/pigment.jpg) |
 | No canvas, and `/render/canvas_weave` 0.35 (§3, `pleinair render mortefontaine-paint -o paint.png`): the weave shows where the grass strokes are thin and catches their edges. | ![](gallery/canvas.jpg) |
 

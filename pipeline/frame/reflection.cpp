@@ -65,21 +65,22 @@ MirrorContext mirror_context(const Shot& shot, const FrameView& view, const Fram
     return c;
 }
 
-Color mirrored_foliage(const MirrorContext& c, float depth) {
+Color mirrored_foliage(const MirrorContext& c, float distance) {
     if (c.foliage.size() < 2) return c.foliage.empty() ? Color(0.0f) : c.foliage[0];
     const auto& a = c.shot.scene.atmosphere;
     const float span = static_cast<float>(a.far_distance - a.near_distance);
-    const float u = span > 0.0f ? clamp01((depth - static_cast<float>(a.near_distance)) / span)
-                                : (depth >= static_cast<float>(a.far_distance) ? 1.0f : 0.0f);
+    const float u = span > 0.0f ? clamp01((distance - static_cast<float>(a.near_distance)) / span)
+                                : (distance >= static_cast<float>(a.far_distance) ? 1.0f : 0.0f);
     const float x = u * static_cast<float>(c.foliage.size() - 1);
     const size_t i = std::min(static_cast<size_t>(x), c.foliage.size() - 2);
     return mix(c.foliage[i], c.foliage[i + 1], x - static_cast<float>(i));
 }
 
 namespace {
-// What one reflected ray sees from `at`: the view `dir` reflected about `n`. Adds its rays.
+// What one reflected ray sees from `at`: the view `dir` reflected about `n`, hazed for the
+// light's path, `eye_distance` to the water and on from there. Adds its rays.
 Color mirrored(const MirrorContext& c, const RayOrigin& at, const glm::vec3& n,
-               const glm::dvec3& dir, int& rays) {
+               const glm::dvec3& dir, double eye_distance, int& rays) {
     const SceneDesc& scene = c.shot.scene;
     // The reflected ray, kept above the water where a ripple would turn it under.
     glm::dvec3 r = dir - 2.0 * glm::dot(dir, glm::dvec3(n)) * glm::dvec3(n);
@@ -93,25 +94,24 @@ Color mirrored(const MirrorContext& c, const RayOrigin& at, const glm::vec3& n,
     Color seen;
     if (h.hit) {
         // The hit's own flat colour, as the underpainting paints it (it casts its shadow ray),
-        // in the haze of its own depth; the water's atmosphere comes after, on the mirror.
+        // in the haze of the light's path; the water's atmosphere comes after, on the mirror.
         seen = surface_hit_color(c.shot, c.view, c.flat, c.settings, c.sun_rays, h,
-                                 from + r * static_cast<double>(h.t), h.normal, r);
+                                 from + r * static_cast<double>(h.t), h.normal, r,
+                                 static_cast<float>(eye_distance + h.t));
         rays += c.flat.shadows && c.sun_rays;
     } else {
         seen = c.plan.sky ? sky_color(scene, rf, glm::vec3(c.view.sun_direction))
                           : background_at(scene.background, r);
     }
     if (c.sun_rays) {
-        // Leaf strokes between the water and what it mirrors, as the sun's casters, hazed at
-        // the camera depth of where the ray meets them.
+        // Leaf strokes between the water and what it mirrors, as the sun's casters, hazed for
+        // the path to where the ray meets them. The eye's place enters only by its distance, so
+        // a mirror traced from a lattice frame's eye is the same whichever frame asks.
         float t = 0.0f;
         const float through = c.sun_rays->transmittance_depth(
             from, rf, h.hit ? h.t * 0.999f : std::numeric_limits<float>::infinity(),
             at.surface_normal(), t);
-        const Camera& cam = c.view.camera;
-        const glm::dvec3 leaves = from + r * static_cast<double>(t);
-        seen = mix(mirrored_foliage(c, static_cast<float>(glm::dot(leaves - cam.eye, cam.forward))),
-                   seen, through);
+        seen = mix(mirrored_foliage(c, static_cast<float>(eye_distance + t)), seen, through);
         ++rays;
     }
     return seen;
@@ -119,9 +119,9 @@ Color mirrored(const MirrorContext& c, const RayOrigin& at, const glm::vec3& n,
 }  // namespace
 
 Color mirror_seen(const MirrorContext& c, const RayOrigin& at, const glm::vec3* normals, int count,
-                  const glm::dvec3& dir, int& rays) {
+                  const glm::dvec3& dir, double eye_distance, int& rays) {
     Color seen(0.0f);
-    for (int i = 0; i < count; ++i) seen += mirrored(c, at, normals[i], dir, rays);
+    for (int i = 0; i < count; ++i) seen += mirrored(c, at, normals[i], dir, eye_distance, rays);
     return seen / static_cast<float>(count);
 }
 
@@ -141,11 +141,11 @@ void set_mirror(const MirrorContext& c, const Color& seen, const glm::vec3& up,
 }
 
 int mirror(const MirrorContext& c, const RayOrigin& at, const glm::vec3* normals, int count,
-           const glm::vec3& up, const glm::dvec3& dir, StrokeConstants& k) {
+           const glm::vec3& up, const glm::dvec3& dir, double eye_distance, StrokeConstants& k) {
     if (!(clamp01(c.shot.scene.water.reflection) > 0.0f) || !c.shot.view_rays || count < 1)
         return 0;
     int rays = 0;
-    set_mirror(c, mirror_seen(c, at, normals, count, dir, rays), up, dir, k);
+    set_mirror(c, mirror_seen(c, at, normals, count, dir, eye_distance, rays), up, dir, k);
     return rays;
 }
 
@@ -192,8 +192,9 @@ struct LatticeMirror {
         if (entry)
             for (int s = 0; s < 2; ++s)
                 if (entry->time[s] == m) return entry->seen[s];
-        const glm::dvec3 dir = glm::normalize(world - l.eyes[static_cast<size_t>(m - l.first)]);
-        const Color seen = mirror_seen(c, at, normals, count, dir, rays);
+        const glm::dvec3 to = world - l.eyes[static_cast<size_t>(m - l.first)];
+        const Color seen =
+            mirror_seen(c, at, normals, count, glm::normalize(to), glm::length(to), rays);
         if (entry) {
             // Over the slot this frame does not read, else the older (kNone is the oldest).
             const int s = entry->time[0] == keep   ? 1
@@ -268,7 +269,8 @@ ReflectionReport add_reflections(const MirrorContext& c, SpriteSet& set,
                                                      rho * static_cast<float>(pmath::sin(a))),
                                            ripple);
                 }
-                const glm::dvec3 dir = glm::normalize(world - c.view.camera.eye);
+                const glm::dvec3 to = world - c.view.camera.eye;
+                const glm::dvec3 dir = glm::normalize(to);
                 const RayOrigin at{world, up, true, shot.surface_lift};
                 if (on_lattice) {
                     MirrorMemo::Entry* e = entries.empty() ? nullptr : entries[sp.item - trees] + j;
@@ -276,7 +278,8 @@ ReflectionReport add_reflections(const MirrorContext& c, SpriteSet& set,
                     set_mirror(c, lm.seen(S.label[j]), up, dir, sp.k);
                     rays.local() += static_cast<uint64_t>(lm.rays);
                 } else {
-                    rays.local() += static_cast<uint64_t>(mirror(c, at, n, count, up, dir, sp.k));
+                    rays.local() += static_cast<uint64_t>(
+                        mirror(c, at, n, count, up, dir, glm::length(to), sp.k));
                 }
                 ++strokes.local();
             }

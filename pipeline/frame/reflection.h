@@ -32,22 +32,24 @@ struct MirrorContext {
     const RenderSettings& settings;
     const RayScene* sun_rays = nullptr;  // the leaf strokes' casters, when the frame has them
     // A reflected leaf stroke: the families' leaf palettes in shade, each pushed into the
-    // distance by its leaf shader's atmosphere at kFoliageDepths camera depths from the
+    // distance by its leaf shader's atmosphere at kFoliageDepths distances from the
     // atmosphere's near to its far (one colour when the frame has no atmosphere).
     static constexpr int kFoliageDepths = 33;
     std::vector<Color> foliage;
     FramePlan flat;  // the plan hits are coloured by: the frame's atmosphere, no mirror, no notes
 };
-// The reflected leaves' colour at a camera depth (MirrorContext::foliage, interpolated).
-Color mirrored_foliage(const MirrorContext& c, float depth);
+// The reflected leaves' colour at the end of a light path this long (MirrorContext::foliage,
+// interpolated).
+Color mirrored_foliage(const MirrorContext& c, float distance);
 MirrorContext mirror_context(const Shot& shot, const FrameView& view, const FramePlan& plan,
                              const RenderSettings& settings, const RayScene* sun_rays);
 
-// The mean of what the view `dir` (unit, from the eye) reflected about each of `count` normals
-// (unit; ripples lean them off the water's normal) finds from water at `at`. Adds its rays.
+// The mean of what the view `dir` (unit, from the eye, `eye_distance` away) reflected about each
+// of `count` normals (unit; ripples lean them off the water's normal) finds from water at `at`,
+// in the haze of the light's whole path (eye to water to what it meets). Adds its rays.
 inline constexpr int kMaxMirrorRays = 16;
 Color mirror_seen(const MirrorContext& c, const RayOrigin& at, const glm::vec3* normals, int count,
-                  const glm::dvec3& dir, int& rays);
+                  const glm::dvec3& dir, double eye_distance, int& rays);
 // k.mirror and k.mirror_keep from what the mirror saw (greyed by /water/mirror_saturation), in
 // the share water's Fresnel reflectance gives the view `dir` against the water's normal `up`;
 // k.lightness falls by that share (the water's dark body shows where it does not mirror).
@@ -55,7 +57,7 @@ void set_mirror(const MirrorContext& c, const Color& seen, const glm::vec3& up,
                 const glm::dvec3& dir, StrokeConstants& k);
 // Both for one view: set_mirror from mirror_seen. Returns the rays cast.
 int mirror(const MirrorContext& c, const RayOrigin& at, const glm::vec3* normals, int count,
-           const glm::vec3& up, const glm::dvec3& dir, StrokeConstants& k);
+           const glm::vec3& up, const glm::dvec3& dir, double eye_distance, StrokeConstants& k);
 
 // Where a moving camera's mirrors are traced from (render/reflection_frames K > 1; a still
 // sun): a water stroke traces its mirror from the eye at lattice times m (frame m + 1 of the

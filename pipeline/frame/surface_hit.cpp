@@ -18,7 +18,7 @@ MaterialId surface_material(const Shot& shot, const RayHit& h, const glm::dvec3&
 
 SurfaceHit surface_hit(const Shot& shot, const FrameView& view, const FramePlan& plan,
                        const RenderSettings& rs, const RayScene* sun_rays, const RayHit& h,
-                       const glm::dvec3& world, glm::vec3 n, const glm::dvec3& dir) {
+                       const glm::dvec3& world, glm::vec3 n, const glm::dvec3& dir, float depth) {
     const SceneDesc& scene = shot.scene;
     if (glm::dot(glm::dvec3(n), dir) > 0) n = -n;
     SurfaceHit out;
@@ -35,7 +35,7 @@ SurfaceHit surface_hit(const Shot& shot, const FrameView& view, const FramePlan&
         if (sh < 1.0f) l *= shadow_remap(sh, m.shader->shadow_bias);
     }
     const Camera& cam = view.camera;
-    const float depth = static_cast<float>(glm::dot(world - cam.eye, cam.forward));
+    if (depth < 0.0f) depth = static_cast<float>(glm::dot(world - cam.eye, cam.forward));
     float d = 0;
     if (plan.atmosphere)
         d = distance_value(depth, scene.atmosphere.near_distance, scene.atmosphere.far_distance,
@@ -51,8 +51,9 @@ SurfaceHit surface_hit(const Shot& shot, const FrameView& view, const FramePlan&
 
 Color surface_hit_color(const Shot& shot, const FrameView& view, const FramePlan& plan,
                         const RenderSettings& rs, const RayScene* sun_rays, const RayHit& h,
-                        const glm::dvec3& world, const glm::vec3& n, const glm::dvec3& dir) {
-    const SurfaceHit s = surface_hit(shot, view, plan, rs, sun_rays, h, world, n, dir);
+                        const glm::dvec3& world, const glm::vec3& n, const glm::dvec3& dir,
+                        float depth) {
+    const SurfaceHit s = surface_hit(shot, view, plan, rs, sun_rays, h, world, n, dir, depth);
     return finish_color(s.k, s.base);
 }
 

@@ -30,13 +30,16 @@ struct SurfaceHit {
 MaterialId surface_material(const Shot& shot, const RayHit& h, const glm::dvec3& world,
                             bool& water);
 
-// The hit `h` at `world` (normal n, seen along dir).
+// The hit `h` at `world` (normal n, seen along dir), in the plan's atmosphere at `depth` (< 0:
+// its depth from the view's camera; a mirror gives the length of the light's path).
 SurfaceHit surface_hit(const Shot& shot, const FrameView& view, const FramePlan& plan,
                        const RenderSettings& settings, const RayScene* sun_rays, const RayHit& h,
-                       const glm::dvec3& world, glm::vec3 n, const glm::dvec3& dir);
+                       const glm::dvec3& world, glm::vec3 n, const glm::dvec3& dir,
+                       float depth = -1.0f);
 // Its flat colour, linear: finish_color of the two.
 Color surface_hit_color(const Shot& shot, const FrameView& view, const FramePlan& plan,
                         const RenderSettings& settings, const RayScene* sun_rays, const RayHit& h,
-                        const glm::dvec3& world, const glm::vec3& n, const glm::dvec3& dir);
+                        const glm::dvec3& world, const glm::vec3& n, const glm::dvec3& dir,
+                        float depth = -1.0f);
 
 }  // namespace pleinair

@@ -55,7 +55,8 @@ Color underpaint_color(const Shot& shot, const FrameView& view, const FramePlan&
                        const MirrorContext& mirrors, SurfaceHit* seen) {
     SurfaceHit s = surface_hit(shot, view, plan, rs, sun_rays, h, world, n, dir);
     if (plan.reflections && s.water)
-        mirror(mirrors, RayOrigin{world, s.n, true, shot.surface_lift}, &s.n, 1, s.n, dir, s.k);
+        mirror(mirrors, RayOrigin{world, s.n, true, shot.surface_lift}, &s.n, 1, s.n, dir,
+               glm::length(world - view.camera.eye), s.k);
     if (seen) *seen = s;
     return finish_color(s.k, s.base);
 }

@@ -88,13 +88,12 @@ void visit_water(WaterDesc& w, V& v) {
     v.number("level", w.level, {-1e9, 1e9}, "world units",
              "Height of the still water; painted where the ground lies below it.");
     v.text("material", w.material_name, "Material of its strokes.");
-    v.real(
-        "reflection", w.reflection, {0, 1}, "",
-        "How much its strokes take the colour of what the water mirrors (terrain, rocks, "
-        "trunks, leaf strokes, the sky), by /water/mirror_rays reflected rays a stroke; scaled by "
-        "water's "
-        "Fresnel reflectance, so the water darkens to its own colour towards the viewer. 0: "
-        "none, no ray.");
+    v.real("reflection", w.reflection, {0, 1}, "",
+           "How much its strokes take the colour of what the water mirrors (terrain, rocks, "
+           "trunks, leaf strokes, the sky, each in the atmosphere of the light's whole path, eye "
+           "to water to it), by /water/mirror_rays reflected rays a stroke; scaled by water's "
+           "Fresnel reflectance, so the water darkens to its own colour towards the viewer. 0: "
+           "none, no ray.");
     v.real("ripple", w.ripple, {0, 1}, "",
            "How far ripples lean each stroke's mirror: its normal moves this share of the way "
            "towards the stroke's random direction (0.02 is about a degree: a tree's reflection "

@@ -11,9 +11,11 @@
 #include <set>
 #include <tuple>
 
-#include "pipeline/output/image_io.h"
 #include "pipeline/frame/lod.h"
 #include "pipeline/frame/paint_frame.h"
+#include "pipeline/input/error.h"
+#include "pipeline/input/scene.h"
+#include "pipeline/output/image_io.h"
 
 namespace pleinair {
 namespace {
@@ -358,6 +360,53 @@ TEST(NearField, GroundStrokesAppearOneByOneAsTheCameraNears) {
                 0.0f);
     }
     EXPECT_GT(total_last, 0.0f);
+}
+
+}  // namespace
+}  // namespace pleinair
+
+namespace pleinair {
+namespace {
+
+// A material's shader_keys edit its shader preset as a family's leaf_shader_keys do: the edited
+// keys change, the others keep the preset's, and a key the shader does not have is named where
+// the scene wrote it.
+TEST(Landscape, AMaterialsShaderKeysEditItsShader) {
+    auto scene = [](const std::string& keys) {
+        return parse_scene(R"({"materials": {"grass": {"shader": "grass"},
+                                             "hazy": {"shader": "grass", "shader_keys": )" +
+                               keys + "}}}",
+                           "keys.json");
+    };
+    const SceneDesc s = scene(R"({"distance": {"dist_value_min": 0.5, "dist_hue_color": "#a4b2bc"},
+                                  "sprite": {"sprite_size": 0.7}})");
+    ASSERT_EQ(s.materials.size(), 2u);
+    const StrokeShaderParams &plain = s.materials[0].shader, &hazy = s.materials[1].shader;
+    EXPECT_FLOAT_EQ(hazy.dist_value_min, 0.5f);
+    EXPECT_FLOAT_EQ(hazy.sprite_size, 0.7f);
+    EXPECT_NEAR(hazy.dist_hue_color.r, 0xa4 / 255.0f, 1e-6f);
+    EXPECT_NEAR(hazy.dist_hue_color.b, 0xbc / 255.0f, 1e-6f);
+    EXPECT_FLOAT_EQ(plain.dist_value_min, 0.3f);  // grass.json's
+    EXPECT_FLOAT_EQ(plain.sprite_size, 1.6f);
+    EXPECT_EQ(hazy.stroke_fullness, plain.stroke_fullness);
+    EXPECT_EQ(hazy.dist_curve_bias, plain.dist_curve_bias);
+    auto problem = [&](const std::string& keys) {
+        try {
+            scene(keys);
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    EXPECT_NE(problem(R"({"sprite": {"sprite_sise": 1}})").find("/materials/hazy/shader_keys"),
+              std::string::npos)
+        << problem(R"({"sprite": {"sprite_sise": 1}})");
+    EXPECT_NE(problem(R"({"sprite": {"sprite_size": -1}})").find("/materials/hazy/shader_keys"),
+              std::string::npos)
+        << problem(R"({"sprite": {"sprite_size": -1}})");
+    EXPECT_NE(problem("3").find("/materials/hazy/shader_keys: expected an object"),
+              std::string::npos)
+        << problem("3");
 }
 
 }  // namespace

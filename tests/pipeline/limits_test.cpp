@@ -28,7 +28,7 @@ TEST(Limits, EachIsCheckedBeforeTheWorkAndSaysHowToRaiseIt) {
          "/camera/width: a 16384x16384 frame needs about 10240 MB for its image buffers (40 "
          "bytes a pixel), over the limit of 4000 MB; raise it with --limit memory_mb=N"},
         {"render mortefontaine -o " + out + " --limit trees=10",
-         "/groups: the scene places 83 trees (4 listed, the rest scattered), over the limit of "
+         "/groups: the scene places 134 trees (3 listed, the rest scattered), over the limit of "
          "10; raise it with --limit trees=N"},
         {"family --preset oak --count 20000 -o " + (dir / "fam").string(),
          "--count: 20000 members, over the limit of 10000; raise it with --limit members=N"},

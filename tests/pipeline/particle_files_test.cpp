@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 #include <set>
 
+#include "generators/terrain.h"
 #include "pipeline/frame/paint_frame.h"
 #include "pipeline/input/error.h"
 #include "pipeline/input/limits.h"
@@ -457,6 +458,51 @@ TEST_F(ParticleScene, AMaterialListWithoutItsPropertyOrNoMaterialIsNamed) {
     EXPECT_NE(problem(R"({"file": "cloud.ply", "material_by": "id", "materials": "grass, moss"})")
                   .find("/particles/0/materials"),
               std::string::npos);
+}
+
+}  // namespace
+}  // namespace pleinair
+
+namespace pleinair {
+namespace {
+
+// on_terrain: a scatter laid out on flat ground (y the height above it) stands on the hills,
+// each particle at the terrain's height where it is; without a terrain the key is refused.
+TEST_F(ParticleScene, OnTerrainStandsEachParticleOnTheGroundUnderIt) {
+    write("cloud.ply", write_ply(three_points(), "ascii"));
+    auto json = [](bool terrain, bool on) {
+        return std::string(R"({"materials": {"grass": {"shader": "grass"}},)") +
+               (terrain ? R"("terrain": {"seed": 4, "noise_amplitude": 3, "hills": [
+                             {"center": [1, 2], "radius": 9, "height": 5}]},)"
+                        : "") +
+               R"("particles": [{"file": "cloud.ply", "material": "grass", "on_terrain": )" +
+               (on ? "true" : "false") + "}]}";
+    };
+    const std::string file = (dir / "s.json").string();
+    const SceneDesc flat = parse_scene(json(true, false), file);
+    const SceneDesc hills = parse_scene(json(true, true), file);
+    const auto& a = flat.particles[0].particles->strokes.position;
+    const auto& b = hills.particles[0].particles->strokes.position;
+    ASSERT_EQ(a.size(), 3u);
+    ASSERT_EQ(b.size(), 3u);
+    double lifted = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        const double h = terrain_height(hills.terrain.params, hills.terrain.seed, double(a[i].x),
+                                        double(a[i].z));
+        EXPECT_EQ(b[i].x, a[i].x);
+        EXPECT_EQ(b[i].z, a[i].z);
+        EXPECT_NEAR(b[i].y, a[i].y + h, 1e-4 * (1 + std::abs(h)));
+        lifted += std::abs(h);
+    }
+    EXPECT_GT(lifted, 1.0) << "the hill lifts the points";
+    try {
+        parse_scene(json(false, true), file);
+        ADD_FAILURE() << "on_terrain without a terrain was accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("/particles/0/on_terrain: needs a /terrain"),
+                  std::string::npos)
+            << e.what();
+    }
 }
 
 }  // namespace

@@ -244,3 +244,68 @@ TEST(Rays, LightThroughStackedCardsIsTheProductAndOpaqueSurfacesBlock) {
 
 }  // namespace
 }  // namespace pleinair
+
+namespace pleinair {
+namespace {
+
+// A mirror's ray (transmittance_depth) lets the same light through as a shadow ray, and finds
+// the leaves where the light is taken: the cards' distances weighed by the depth each adds,
+// over every card on the ray, even past where a shadow ray would stop as blocked.
+TEST(Rays, AMirrorRayFindsWhereTheLeavesTakeItsLight) {
+    StrokeShaderParams p;
+    p.max_stroke_opacity = 0.9f;
+    EdgeTable edge = make_edge_table(p.stroke_fullness);
+    std::vector<StrokeCaster> stack;
+    for (int k = 0; k < 14; ++k) stack.push_back(card({0, 2.0 + k, 0}, 0.05f + 0.06f * k, p));
+    const glm::vec3 up(0, 1, 0);
+    auto depth_of = [&](const StrokeCaster& c, float s, float t) {
+        const float a = stroke_opacity(p, stroke_noise(c.noise, s, t, 1),
+                                       edge_mask(edge, s, t, p.stroke_fullness));
+        return -std::log2(std::max(1.0f - a, 1e-6f));
+    };
+    for (const size_t n : {size_t(2), stack.size()}) {
+        RayScene rays;
+        rays.add_casters(std::vector<StrokeCaster>(stack.begin(), stack.begin() + long(n)), p,
+                         edge);
+        rays.commit();
+        int blocked = 0;
+        for (float s : {0.3f, 0.5f, 0.62f}) {
+            const float t = 0.45f;
+            const glm::dvec3 o(2.0 * s - 1.0, 0, 2.0 * t - 1.0);
+            double sum = 0, weighed = 0;
+            for (size_t k = 0; k < n; ++k) {
+                const double d = depth_of(stack[k], s, t);
+                sum += d, weighed += d * stack[k].center.y;
+            }
+            ASSERT_GT(sum, 0.0);
+            float distance = -1;
+            const float got = rays.transmittance_depth(
+                o, up, std::numeric_limits<float>::infinity(), nullptr, distance);
+            EXPECT_EQ(got, rays.transmittance(o, up, ShadowMode::kTransmissive));
+            EXPECT_NEAR(distance, weighed / sum, 0.02) << n << " cards, s " << s;
+            if (sum >= 10.0) {  // a shadow ray stops as blocked part of the way up the stack
+                EXPECT_EQ(got, 0.0f);
+                ++blocked;
+            }
+        }
+        if (n == stack.size()) {
+            EXPECT_GT(blocked, 0) << "fourteen cards take all the light somewhere";
+        }
+    }
+    // Nothing on the ray: all the light and no distance; an opaque surface: none.
+    RayScene rays;
+    rays.add_casters(stack, p, edge);
+    rays.add_mesh(floor_quad(1), {5, 9, 0});
+    rays.commit();
+    float distance = -1;
+    EXPECT_EQ(rays.transmittance_depth({3, 0, 3}, up, std::numeric_limits<float>::infinity(),
+                                       nullptr, distance),
+              1.0f);
+    EXPECT_EQ(distance, 0.0f);
+    EXPECT_EQ(rays.transmittance_depth({5, 0, 0}, up, std::numeric_limits<float>::infinity(),
+                                       nullptr, distance),
+              0.0f);
+}
+
+}  // namespace
+}  // namespace pleinair

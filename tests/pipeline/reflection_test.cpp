@@ -359,6 +359,46 @@ TEST(Reflection, AMirrorIsGreyedAndTheWaterDarkensWhereItMirrors) {
     }
 }
 
+// The leaves the water mirrors keep the haze of where they stand (mirror_context's foliage):
+// near the atmosphere's start they are the families' leaf palettes in shade, far off they take
+// the haze's colour as their own strokes do; without an atmosphere they are one colour.
+TEST(Reflection, MirroredLeavesKeepTheHazeOfTheirDistance) {
+    auto context_foliage = [](bool atmosphere) {
+        const Shot shot =
+            build_shot(load_scene(test::source_dir() / "presets" / "scenes" / "mortefontaine.json",
+                                  {"/camera/width=160", "/camera/height=90"}));
+        const FrameSettings fs = scene_frame_settings(shot.scene);
+        const FrameView view = view_at(shot.scene, 0.0);
+        FramePlan plan = plan_frame(shot, fs);
+        EXPECT_TRUE(plan.atmosphere);
+        plan.atmosphere = atmosphere;  // as a plan for a scene without one
+        const MirrorContext c = mirror_context(shot, view, plan, fs.render, shot.sun_rays.get());
+        const auto& a = shot.scene.atmosphere;
+        std::vector<Color> out;
+        for (float depth : {0.0f, a.near_distance, 0.5f * (a.near_distance + a.far_distance),
+                            a.far_distance, 2.0f * a.far_distance})
+            out.push_back(mirrored_foliage(c, depth));
+        Color shade(0.0f);
+        for (const Family& f : shot.scene.families) shade += palette_lookup(f.leaf_palette, 0.3f);
+        out.push_back(shade / float(shot.scene.families.size()));
+        return out;
+    };
+    const std::vector<Color> hazy = context_foliage(true), clear = context_foliage(false);
+    const Color shade = hazy.back();
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_NEAR(hazy[0][k], shade[k], 1e-5f) << "before the haze starts";
+        EXPECT_NEAR(hazy[1][k], shade[k], 1e-5f);
+        EXPECT_EQ(hazy[3][k], hazy[4][k]) << "the haze is full at its far distance";
+        for (size_t i = 0; i + 1 < clear.size(); ++i) EXPECT_EQ(clear[i][k], shade[k]);
+    }
+    // Lighter and bluer with distance (the scene's haze is a light blue grey).
+    EXPECT_GT(luminance(hazy[2]), luminance(shade) * 1.2f);
+    EXPECT_GT(luminance(hazy[3]), luminance(hazy[2]));
+    EXPECT_GT(hazy[3].z / hazy[3].y, shade.z / shade.y);
+    for (const Color& c : hazy)
+        for (int k = 0; k < 3; ++k) EXPECT_TRUE(std::isfinite(c[k]));
+}
+
 // Frames painted in order with the mirrors kept from the frames before are the frames painted
 // alone, and trace a fraction of their mirrors; the lattice changes a still nothing.
 TEST(Reflection, MirrorsKeptFromFrameToFramePaintTheFramesPaintedAlone) {
