@@ -141,7 +141,7 @@ family birch "a narrow, airy crown on a white trunk that shows, its branchlets d
 family pine "the umbrella on a tall bare trunk (the stone pine read as its species before too)."
 family shrub "a garden shrub, branched from the ground (no species; unchanged)."
 family truffula "Dr. Seuss's tufts on bare stems (no species; unchanged)."
-echo "| \`mortefontaine\`: the oak leaning over the meadow on the right, and the pond mirroring the far bank darker and greyer than the bank itself. \`pleinair render mortefontaine -o mortefontaine.png $SIZE\` | ![](gallery/before/scene-mortefontaine.jpg) | ![](gallery/scene-mortefontaine.jpg) |" >> "$MD"
+echo "| \`mortefontaine\`: recomposed after the painting: the great oak screening the right with its limbs over the water, a thin leaning birch on the open left with wild flowers at its foot (the warm accent), the far bank in a blue haze merging with the sky, mirrored as pale by the still water, the meadow in greyed sage. \`pleinair render mortefontaine -o mortefontaine.png $SIZE\` | ![](gallery/before/scene-mortefontaine.jpg) | ![](gallery/scene-mortefontaine.jpg) |" >> "$MD"
 
 mv "$MD" docs/gallery.md
 echo "docs/gallery.md: $(ls "$OUT"/*.jpg | wc -l) images, $(du -ck "$OUT"/*.jpg | tail -1 | cut -f1) KB"
