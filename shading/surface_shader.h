@@ -10,6 +10,7 @@
 
 #include "shading/curves.h"
 #include "shading/noise.h"
+#include "shading/portable_math.h"
 
 namespace pleinair {
 
@@ -23,6 +24,11 @@ struct SurfaceShaderParams {
     float detail_s_frequ = 4.0f, detail_t_frequ = 0.6f;  // grass: thin vertical tufts
     float crest_shrink = 0.8f;   // how much of a sprite's height is lost when seen edge-on
     float inside_growth = 1.0f;  // deepest sprites are 1 + this times the size of top ones
+    // Base strokes laid along the ground (issue 27 §4): 0 they stand (the stroke's length up
+    // the world's y, as grass's tufts), 1 they lie across the slope, or along lay_azimuth
+    // (degrees about +y from +x) where the ground is level.
+    float lay = 0.0f;
+    float lay_azimuth = 0.0f;
     bool operator==(const SurfaceShaderParams&) const = default;
 };
 
@@ -44,6 +50,31 @@ inline float surface_lightness(const SurfaceShaderParams& p, float n_dot_l, floa
 
 inline bool is_detail(const SurfaceShaderParams& p, float height) {
     return height > p.detail_threshold;
+}
+
+// The direction a base stroke's length takes in the world (unit), from the surface's normal n
+// (unit): up the world's y when it stands (lay 0); lying (lay 1), along the ground across its
+// fall line, as a brush follows a slope's contour, turning to lay_azimuth where the ground is
+// level (within about 10 degrees: the contour of a flat meadow means nothing). Detail strokes
+// always stand.
+inline glm::vec3 surface_stroke_direction(const SurfaceShaderParams& p, const glm::vec3& n,
+                                          float height) {
+    const glm::vec3 up(0.0f, 1.0f, 0.0f);
+    const float lay = clamp01(p.lay);
+    if (!(lay > 0.0f) || is_detail(p, height)) return up;
+    const float a = p.lay_azimuth * 0.017453292f;
+    // A turn by a about +y takes +x to (cos a, 0, -sin a).
+    glm::vec3 along(static_cast<float>(pmath::cos(a)), 0.0f, -static_cast<float>(pmath::sin(a)));
+    along -= glm::dot(along, n) * n;        // into the ground's plane
+    glm::vec3 contour = glm::cross(n, up);  // across the fall line, |sin slope| long
+    const float steep = std::min(glm::length(contour) / 0.17f, 1.0f);
+    if (glm::dot(contour, along) < 0.0f) contour = -contour;  // the side nearer the azimuth
+    const float cl = glm::length(contour), al = glm::length(along);
+    glm::vec3 lie = (cl > 1e-6f ? contour / cl : glm::vec3(0.0f)) * steep +
+                    (al > 1e-6f ? along / al : glm::vec3(0.0f)) * (1.0f - steep);
+    const glm::vec3 d = up * (1.0f - lay) + lie * lay;
+    const float len = glm::length(d);
+    return len > 1e-6f && std::isfinite(len) ? d / len : up;
 }
 
 // Stroke noise frequencies across (s) and along (t) the stroke.

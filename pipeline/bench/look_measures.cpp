@@ -30,8 +30,13 @@ std::vector<float> frame_lightness(const Frame& f) {
     return l;
 }
 
-double brush_texture(const std::vector<float>& l, int w, int h, const std::vector<uint8_t>& mask,
-                     int r, uint64_t* count) {
+namespace {
+
+// Calls fn(variance) with L*'s variance in the (2 r + 1)^2 window around each pixel of `mask`
+// whose window lies wholly inside it.
+template <class Fn>
+void window_variances(const std::vector<float>& l, int w, int h, const std::vector<uint8_t>& mask,
+                      int r, Fn&& fn) {
     // Summed-area tables of L*, L*^2 and the mask: each window's sums in four reads.
     const size_t W = static_cast<size_t>(w) + 1;
     std::vector<double> s1(W * (h + 1), 0.0), s2(s1.size(), 0.0), sm(s1.size(), 0.0);
@@ -47,18 +52,32 @@ double brush_texture(const std::vector<float>& l, int w, int h, const std::vecto
         return s[y1 * W + x1] - s[y0 * W + x1] - s[y1 * W + x0] + s[y0 * W + x0];
     };
     const double area = double(2 * r + 1) * double(2 * r + 1);
-    double sum = 0;
-    uint64_t n = 0;
     for (int y = r; y < h - r; ++y)
         for (int x = r; x < w - r; ++x) {
             const int x0 = x - r, y0 = y - r, x1 = x + r + 1, y1 = y + r + 1;
             if (box(sm, x0, y0, x1, y1) < area) continue;  // the window leaves the region
             const double m = box(s1, x0, y0, x1, y1) / area;
-            sum += std::max(0.0, box(s2, x0, y0, x1, y1) / area - m * m);
-            ++n;
+            fn(std::max(0.0, box(s2, x0, y0, x1, y1) / area - m * m));
         }
+}
+
+}  // namespace
+
+double brush_texture(const std::vector<float>& l, int w, int h, const std::vector<uint8_t>& mask,
+                     int r, uint64_t* count) {
+    double sum = 0;
+    uint64_t n = 0;
+    window_variances(l, w, h, mask, r, [&](double v) { sum += v, ++n; });
     if (count) *count = n;
     return n ? std::sqrt(sum / double(n)) : 0.0;
+}
+
+double smooth_share(const std::vector<float>& l, int w, int h, const std::vector<uint8_t>& mask,
+                    int r, double max_spread) {
+    uint64_t smooth = 0, n = 0;
+    const double v_max = max_spread * max_spread;
+    window_variances(l, w, h, mask, r, [&](double v) { smooth += v < v_max, ++n; });
+    return n ? double(smooth) / double(n) : 0.0;
 }
 
 double mean_flat_run(const Frame& f, const std::vector<uint8_t>& mask) {
@@ -147,8 +166,9 @@ uint64_t pixels_outside(const Frame& f, const std::vector<uint8_t>& mask, const 
 LookRegions look_regions(const Shot& shot, const FrameView& view, const Frame& f) {
     LookRegions r;
     const size_t n = static_cast<size_t>(f.width) * f.height;
-    r.sky.assign(n, 0), r.trees.assign(n, 0), r.water.assign(n, 0);
+    r.sky.assign(n, 0), r.trees.assign(n, 0), r.water.assign(n, 0), r.near_ground.assign(n, 0);
     if (!f.has_aovs) return r;
+    const float water_id = water_stroke_id(shot.scene);
     const Camera& cam = view.camera;
     const bool water = shot.scene.water.present && shot.view_rays;
     const MaterialId water_mat = shot.materials.surface(shot.scene.water.material);
@@ -160,11 +180,13 @@ LookRegions look_regions(const Shot& shot, const FrameView& view, const Frame& f
             r.trees[i] = id >= 1.0f && id < 65536.0f;
             const glm::dvec3 d = ray_direction(cam, x + 0.5, y + 0.5);
             r.sky[i] = is_open_sky(f, i, d);
-            if (!water) continue;
+            if (!shot.view_rays) continue;
             const RayHit h = shot.view_rays->intersect(cam.eye, glm::vec3(d));
             if (!h.hit) continue;
             const ViewSurface& vs = shot.view_surfaces[h.geometry];
-            r.water[i] = !vs.terrain && vs.material == water_mat;
+            r.water[i] = water && !vs.terrain && vs.material == water_mat;
+            // The near ground as a ground stroke paints it (not a tree's stroke in front).
+            r.near_ground[i] = vs.terrain && h.t < kNearGround && id >= 65536.0f && id != water_id;
         }
     });
     return r;

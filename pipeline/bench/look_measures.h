@@ -26,6 +26,12 @@ std::vector<float> frame_lightness(const Frame& frame);
 double brush_texture(const std::vector<float>& lightness, int width, int height,
                      const std::vector<uint8_t>& mask, int radius, uint64_t* count = nullptr);
 
+// The share of the windows brush_texture measures whose L* spreads (standard deviation) less
+// than `max_spread`: paint left smooth at that scale, a soft blob's inside rather than a brush's
+// marks.
+double smooth_share(const std::vector<float>& lightness, int width, int height,
+                    const std::vector<uint8_t>& mask, int radius, double max_spread);
+
 // Banding: along rows of `mask`, the mean length of runs of pixels whose 8-bit sRGB colour is
 // the same; a smooth gradient quantised to 8 bits makes long runs (bands), brush strokes short.
 double mean_flat_run(const Frame& frame, const std::vector<uint8_t>& mask);
@@ -35,7 +41,13 @@ double mean_flat_run(const Frame& frame, const std::vector<uint8_t>& mask);
 // water's mesh first; empty when the shot has no camera scene or no water).
 struct LookRegions {
     std::vector<uint8_t> sky, trees, water;
+    // The near ground: camera rays that meet the terrain within kNearGround and whose pixel a
+    // ground stroke paints (a meadow's foreground, issue 27 §4).
+    std::vector<uint8_t> near_ground;
 };
+// Metres from the eye: the ground a walker sees at their feet and a few steps on, where Corot's
+// strokes are broadest.
+inline constexpr double kNearGround = 15.0;
 
 // The object id a scene's water strokes carry in the frame's AOV.
 float water_stroke_id(const SceneDesc& scene);

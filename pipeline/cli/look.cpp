@@ -1,6 +1,6 @@
-// `pleinair bench look SCENE`: the look's measures of a still or of a shot's frame, two tables
-// of one row (look_measures.h; crown_look.h and palette_look.h); --save writes the frame it
-// measured.
+// `pleinair bench look SCENE`: the look's measures of a still or of a shot's frame, three
+// tables of one row (look_measures.h; crown_look.h and palette_look.h; the near ground's brush);
+// --save writes the frame it measured.
 #include <cstdio>
 
 #include "pipeline/bench/crown_look.h"
@@ -19,6 +19,10 @@ namespace {
 
 // Trees smaller than this share of the frame are too few pixels for an outline to mean much.
 constexpr double kCrownMinShare = 0.0005;
+
+// A 5 x 5 window of paint whose L* spreads less than this is smooth: no brush mark shows in it
+// (one L* unit is about the least step the eye sees between neighbouring greys).
+constexpr double kSmoothSpread = 1.0;
 
 // The second table: the crowns' median measures (crown_look.h) and the palette (palette_look.h).
 void print_crowns_and_palette(const std::string& name, const Shot& shot, const FrameView& view,
@@ -39,6 +43,23 @@ void print_crowns_and_palette(const std::string& name, const Shot& shot, const F
         name.c_str(), c.pixels, c.sky, c.edge, c.bark, a.sky, a.edge, a.bark, p.chroma_mean,
         p.chroma_p95, p.warm, p.lightness_median, p.lightness[0], p.lightness[1], p.lightness[2],
         p.lightness[3], p.lightness[4]);
+}
+
+// The third table: the near ground's brush (issue 27 §4): its texture at the two scales, and
+// the share of it left smooth (kSmoothSpread), the inside of soft blobs.
+void print_foreground(const std::string& name, const Frame& f, const std::vector<float>& l,
+                      const std::vector<uint8_t>& near) {
+    uint64_t px = 0;
+    for (uint8_t v : near) px += v;
+    const double t5 = brush_texture(l, f.width, f.height, near, 2);
+    const double t17 = brush_texture(l, f.width, f.height, near, 8);
+    const double smooth = smooth_share(l, f.width, f.height, near, 2, kSmoothSpread);
+    std::printf(
+        "\n| scene | near ground (within %.0f m): pixels | L* texture 5 px / 17 px | smooth "
+        "share (5 px windows under %.1f L*) |\n|---|---:|---:|---:|\n",
+        kNearGround, kSmoothSpread);
+    std::printf("| %s | %llu | %.2f / %.2f | %.3f |\n", name.c_str(),
+                static_cast<unsigned long long>(px), t5, t17, smooth);
 }
 
 }  // namespace
@@ -92,6 +113,7 @@ int run_bench_look(const BenchCommand& cmd) {
         static_cast<unsigned long long>(glass.pairs), glass.lightness, glass.chroma, ms);
     (void)tree_px;
     print_crowns_and_palette(cmd.scene + sets, shot, view, f, r.sky);
+    print_foreground(cmd.scene + sets, f, l, r.near_ground);
     return 0;
 }
 

@@ -143,6 +143,14 @@ void visit_surface_shader(P& p, V& v) {
                    "strokes do not stand above a ridge.");
             v.real("inside_growth", p.inside_growth, {0, 100}, "",
                    "Deepest sprites are 1 + this times the size of the top ones.");
+            v.real("lay", p.lay, {0, 1}, "",
+                   "Base strokes laid along the ground: 0 they stand (their length up the "
+                   "world's y, as grass's tufts), 1 they lie across the slope (a brush "
+                   "following the contour), or along lay_azimuth where the ground is level. "
+                   "Detail strokes stand.");
+            v.real("lay_azimuth", p.lay_azimuth, {-360, 360}, "deg",
+                   "Where the ground is level, the direction lying strokes take: degrees about "
+                   "+y from +x (90: towards -z, away from a camera looking down -z).");
         });
 }
 

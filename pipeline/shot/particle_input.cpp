@@ -27,7 +27,7 @@ ParticleInput surface_input(const ParticleSource& shot, size_t chunk, size_t j, 
             in.own_color = &from.file->color[from.first + j], in.own_amount = from.color_amount;
     }
     in.normal = lighting_normal(S.normal(j), S.random_normal(j), m.surface->random_normal_weight);
-    in.tangent = glm::vec3(0, 1, 0);
+    in.tangent = surface_stroke_direction(*m.surface, S.normal(j), S.height(j));
     in.width = w;
     in.length = w * m.shader->stroke_aspect;
     in.label = S.label[j];

@@ -166,3 +166,28 @@ TEST(PaletteLook, ChromaWarmAccentsAndValuesOfAFrame) {
 
 }  // namespace
 }  // namespace pleinair
+
+namespace pleinair {
+namespace {
+
+// smooth_share (bench look's foreground): the windows wholly inside the mask whose L* spreads
+// less than the limit: the flat half of a made frame, none of its brushed half.
+TEST(Look, SmoothShareCountsOnlyPaintWithoutMarks) {
+    const int w = 40, h = 20;
+    std::vector<float> l(size_t(w) * h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            l[size_t(y) * w + x] = x < 20 ? 50.0f : ((x + y) % 2 ? 40.0f : 60.0f);
+    const std::vector<uint8_t> all(l.size(), 1);
+    // Centres 2..37 across, 2..17 down; those with x <= 17 see only the flat half.
+    EXPECT_NEAR(smooth_share(l, w, h, all, 2, 1.0), 16.0 * 16.0 / (36.0 * 16.0), 1e-12);
+    EXPECT_EQ(smooth_share(l, w, h, all, 2, 100.0), 1.0);  // everything under a wide limit
+    std::vector<uint8_t> brushed(l.size(), 0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 20; x < w; ++x) brushed[size_t(y) * w + x] = 1;
+    EXPECT_EQ(smooth_share(l, w, h, brushed, 2, 1.0), 0.0);
+    EXPECT_EQ(smooth_share(l, w, h, std::vector<uint8_t>(l.size(), 0), 2, 1.0), 0.0);
+}
+
+}  // namespace
+}  // namespace pleinair

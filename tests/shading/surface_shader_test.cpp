@@ -63,3 +63,50 @@ TEST(SurfaceShader, InsideGrowthAndMaterials) {
 
 }  // namespace
 }  // namespace pleinair
+
+namespace pleinair {
+namespace {
+
+// Base strokes laid along the ground (lay): standing by default, along the azimuth on level
+// ground, across the fall line on a slope, always in the ground's plane when lying; detail
+// strokes stand.
+TEST(SurfaceShader, LaidStrokesFollowTheContourOrTheBrushAzimuth) {
+    SurfaceShaderParams p;
+    const glm::vec3 up(0, 1, 0);
+    EXPECT_EQ(surface_stroke_direction(p, up, 0.2f), up);  // lay 0: as before
+    p.lay = 1.0f;
+    p.lay_azimuth = 90.0f;
+    const glm::vec3 level = surface_stroke_direction(p, up, 0.2f);
+    EXPECT_NEAR(level.x, 0.0f, 1e-6f);
+    EXPECT_NEAR(level.y, 0.0f, 1e-6f);
+    EXPECT_NEAR(level.z, -1.0f, 1e-6f);  // +x turned 90 degrees about +y
+    EXPECT_EQ(surface_stroke_direction(p, up, 0.9f), up) << "detail strokes stand";
+    // A slope of 30 degrees falling towards +x: the stroke runs along z, level, in its plane.
+    const float s = 0.5f, c = 0.8660254f;
+    const glm::vec3 n(s, c, 0.0f);
+    for (float az : {0.0f, 45.0f, 90.0f, -120.0f}) {
+        p.lay_azimuth = az;
+        const glm::vec3 d = surface_stroke_direction(p, n, 0.2f);
+        EXPECT_NEAR(glm::length(d), 1.0f, 1e-5f);
+        EXPECT_NEAR(d.y, 0.0f, 1e-5f) << az;
+        EXPECT_NEAR(std::abs(d.z), 1.0f, 1e-5f) << az;
+        EXPECT_NEAR(glm::dot(d, n), 0.0f, 1e-5f);
+    }
+    // Gentle slopes blend towards the azimuth; every direction lies in the ground's plane.
+    p.lay_azimuth = 0.0f;
+    for (float tilt : {0.0f, 0.05f, 0.1f, 0.2f}) {
+        const glm::vec3 m = glm::normalize(glm::vec3(0.0f, 1.0f, tilt));
+        const glm::vec3 d = surface_stroke_direction(p, m, 0.2f);
+        EXPECT_NEAR(glm::length(d), 1.0f, 1e-5f);
+        EXPECT_NEAR(glm::dot(d, m), 0.0f, 1e-5f) << tilt;
+        EXPECT_GT(d.x, 0.99f) << "the fall line is along z, so contour and azimuth agree";
+    }
+    // Half laid: between standing and lying.
+    p.lay = 0.5f;
+    const glm::vec3 half = surface_stroke_direction(p, up, 0.2f);
+    EXPECT_NEAR(half.y, std::sqrt(0.5f), 1e-5f);
+    EXPECT_NEAR(half.x, std::sqrt(0.5f), 1e-5f);
+}
+
+}  // namespace
+}  // namespace pleinair
