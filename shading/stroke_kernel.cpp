@@ -257,8 +257,8 @@ void ShadeStrokeRow(const StrokeRow& row, int y, int x0, int count, float* alpha
             const Color c = ramp_color(ramp, 0.5f);
             cr = hn::Set(d, c.x), cg = hn::Set(d, c.y), cb = hn::Set(d, c.z);
         } else {
-            V nx = hn::Add(hn::Mul(s, hn::Set(d, k.sub_frequ)), hn::Set(d, k.offset_t));
-            V ny = hn::Add(hn::Mul(t, hn::Set(d, k.sub_frequ)), hn::Set(d, k.offset_s));
+            V nx = hn::Add(hn::Mul(s, hn::Set(d, k.sub_frequ_s)), hn::Set(d, k.offset_t));
+            V ny = hn::Add(hn::Mul(t, hn::Set(d, k.sub_frequ_t)), hn::Set(d, k.offset_s));
             V xr = hn::Mul(FractalNoise(d, nx, ny, 1),
                            hn::Set(d, static_cast<float>(StrokeRamp::kSize)));
             auto i = hn::Min(hn::Max(hn::ConvertTo(di, xr), hn::Zero(di)),

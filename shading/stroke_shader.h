@@ -38,6 +38,9 @@ struct StrokeShaderParams {
     // Colour noise inside a stroke.
     float sub_stroke_frequ = 8.0f;
     float sub_stroke_amt = 0.12f;  // ours: lightness swing of that noise
+    // Ours: that noise's frequency across (s) and along (t) the stroke over sub_stroke_frequ; a
+    // high s and a low t draw streaks along the stroke, as a brush's bristles do.
+    float sub_stroke_s_scale = 1.0f, sub_stroke_t_scale = 1.0f;
     // Lighting modifiers (IV.4.1): outer leaves lighter, inner darker, through gains.
     float outer_brighten = 0.35f;  // ours
     float inner_darken = 0.45f;    // ours
@@ -230,7 +233,7 @@ struct StrokeConstants {
     float lightness = 0;  // after lighting modifiers and shadow
     float frequ_s = 1, frequ_t = 1;
     float offset_s = 0, offset_t = 0;  // from the label: every sprite's noise differs
-    float sub_frequ = 0, sub_amt = 0;
+    float sub_frequ_s = 0, sub_frequ_t = 0, sub_amt = 0;
     Color tint{0.0f};     // already multiplied by unique_tint_amt
     float tint_keep = 1;  // 1 - unique_tint_amt
     Color hue{0.0f};      // dist_hue_color * (dist_hue_strength * d)
@@ -283,7 +286,8 @@ inline StrokeConstants stroke_constants(const StrokeShaderParams& p, float n_dot
     const StrokeNoise n = stroke_noise_for(p, l, center_distance, label);
     k.frequ_s = n.frequ_s, k.frequ_t = n.frequ_t;
     k.offset_s = n.offset_s, k.offset_t = n.offset_t;
-    k.sub_frequ = p.sub_stroke_frequ;
+    k.sub_frequ_s = p.sub_stroke_frequ * p.sub_stroke_s_scale;
+    k.sub_frequ_t = p.sub_stroke_frequ * p.sub_stroke_t_scale;
     k.sub_amt = p.sub_stroke_amt;
     if (use_tint) {
         Color t = srgb_to_linear(mix(p.tint_color1, p.tint_color2, tree_hash01(tree_id)));
@@ -355,7 +359,8 @@ inline Color finish_color(const StrokeConstants& k, Color c) {
 inline Color stroke_color(const StrokeConstants& k, const Palette& palette, float s, float t) {
     float l = k.lightness;
     if (k.sub_amt > 0.0f)
-        l += k.sub_amt * (noise(s * k.sub_frequ + k.offset_t, t * k.sub_frequ + k.offset_s) - 0.5f);
+        l += k.sub_amt *
+             (noise(s * k.sub_frequ_s + k.offset_t, t * k.sub_frequ_t + k.offset_s) - 0.5f);
     return finish_color(k, palette_lookup(palette, l));
 }
 
@@ -400,7 +405,7 @@ inline Color ramp_color(const StrokeRamp& r, float n) {
 // stroke_color through the ramp.
 inline Color stroke_color(const StrokeConstants& k, const StrokeRamp& r, float s, float t) {
     if (!(k.sub_amt > 0.0f)) return ramp_color(r, 0.5f);
-    return ramp_color(r, noise(s * k.sub_frequ + k.offset_t, t * k.sub_frequ + k.offset_s));
+    return ramp_color(r, noise(s * k.sub_frequ_s + k.offset_t, t * k.sub_frequ_t + k.offset_s));
 }
 
 }  // namespace pleinair

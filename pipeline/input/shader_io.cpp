@@ -55,6 +55,11 @@ void visit_stroke_shader(P& p, V& v) {
                "Frequency of the noise that varies the palette lookup within a stroke.");
         v.real("sub_stroke_amt", p.sub_stroke_amt, {0, 1}, "lightness",
                "How far that noise moves the lookup (peak to peak); 0 turns it off.");
+        v.real("sub_stroke_s_scale", p.sub_stroke_s_scale, {0, 64}, "",
+               "That noise's frequency factor across the stroke: with a low t scale, streaks "
+               "along the stroke, as a brush's bristles leave.");
+        v.real("sub_stroke_t_scale", p.sub_stroke_t_scale, {0, 64}, "",
+               "That noise's frequency factor along the stroke.");
     });
     v.object("lighting", "Lightness from the particle's place in the tree (IV.4.1)", [&] {
         v.real("outer_brighten", p.outer_brighten, {0, 1}, "",
