@@ -587,8 +587,9 @@ bool RayScene::occluded(const glm::dvec3& origin, const glm::vec3& dir, float tm
     return transmittance(origin, dir, ShadowMode::kThreshold, tmax, n) < 0.5f;
 }
 
-float RayScene::transmittance(const glm::dvec3& origin, const glm::vec3& dir, ShadowMode mode,
-                              float tmax, const glm::vec3* n) const {
+float RayScene::through_casters(const glm::dvec3& origin, const glm::vec3& dir, ShadowMode mode,
+                                float tmax, const glm::vec3* n, float* distance) const {
+    if (distance) *distance = 0.0f;
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRay r;
@@ -599,32 +600,25 @@ float RayScene::transmittance(const glm::dvec3& origin, const glm::vec3& dir, Sh
     ShadowContext sc;
     rtcInitIntersectContext(&sc.ctx);
     sc.mode = mode;
+    sc.through = distance != nullptr;
     fill_ray(r, origin, impl_->anchor, dir, tmax, n);
     rtcOccluded1(impl_->casters, &sc.ctx, &r);
-    if (r.tfar < 0 || sc.blocked) return 0.0f;
+    if (distance && sc.depth > 0)
+        *distance = static_cast<float>(static_cast<double>(sc.depth_distance) /
+                                       (64.0 * static_cast<double>(sc.depth)));
+    // Walking through, nothing blocks: light under a thousandth is none, as for a shadow ray.
+    if (r.tfar < 0 || sc.blocked || sc.depth >= kOpaqueDepth) return 0.0f;
     return pmath::exp2(-static_cast<float>(sc.depth) / 65536.0f);
+}
+
+float RayScene::transmittance(const glm::dvec3& origin, const glm::vec3& dir, ShadowMode mode,
+                              float tmax, const glm::vec3* n) const {
+    return through_casters(origin, dir, mode, tmax, n, nullptr);
 }
 
 float RayScene::transmittance_depth(const glm::dvec3& origin, const glm::vec3& dir, float tmax,
                                     const glm::vec3* n, float& distance) const {
-    distance = 0.0f;
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    RTCRay r;
-    fill_ray(r, origin, impl_->anchor, dir, tmax, n);
-    rtcOccluded1(impl_->scene, &ctx, &r);
-    if (r.tfar < 0) return 0.0f;
-    if (!impl_->casters || impl_->caster_total == 0) return 1.0f;
-    ShadowContext sc;
-    rtcInitIntersectContext(&sc.ctx);
-    sc.through = true;
-    fill_ray(r, origin, impl_->anchor, dir, tmax, n);
-    rtcOccluded1(impl_->casters, &sc.ctx, &r);
-    if (sc.depth > 0)
-        distance = static_cast<float>(static_cast<double>(sc.depth_distance) /
-                                      (64.0 * static_cast<double>(sc.depth)));
-    if (sc.depth >= kOpaqueDepth) return 0.0f;
-    return pmath::exp2(-static_cast<float>(sc.depth) / 65536.0f);
+    return through_casters(origin, dir, ShadowMode::kTransmissive, tmax, n, &distance);
 }
 
 }  // namespace pleinair

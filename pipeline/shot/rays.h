@@ -195,6 +195,9 @@ class RayScene {
                               const glm::vec3* surface_normal, float& distance) const;
 
   private:
+    // transmittance, or with `distance` transmittance_depth's walk through every card.
+    float through_casters(const glm::dvec3& origin, const glm::vec3& direction, ShadowMode mode,
+                          float tmax, const glm::vec3* surface_normal, float* distance) const;
     uint32_t attach(void* geometry, const glm::mat3& normal_to_world);  // an RTCGeometry
     struct Impl;
     std::unique_ptr<Impl> impl_;
