@@ -169,6 +169,7 @@ LookRegions look_regions(const Shot& shot, const FrameView& view, const Frame& f
     r.sky.assign(n, 0), r.trees.assign(n, 0), r.water.assign(n, 0), r.near_ground.assign(n, 0);
     if (!f.has_aovs) return r;
     const float water_id = water_stroke_id(shot.scene);
+    const float first_surface = static_cast<float>(surface_object_id(0));
     const Camera& cam = view.camera;
     const bool water = shot.scene.water.present && shot.view_rays;
     const MaterialId water_mat = shot.materials.surface(shot.scene.water.material);
@@ -177,7 +178,7 @@ LookRegions look_regions(const Shot& shot, const FrameView& view, const Frame& f
         for (int x = 0; x < f.width; ++x) {
             const size_t i = static_cast<size_t>(y) * f.width + x;
             const float id = f.object_id[i];
-            r.trees[i] = id >= 1.0f && id < 65536.0f;
+            r.trees[i] = id >= 1.0f && id < first_surface;
             const glm::dvec3 d = ray_direction(cam, x + 0.5, y + 0.5);
             r.sky[i] = is_open_sky(f, i, d);
             if (!shot.view_rays) continue;
@@ -186,7 +187,8 @@ LookRegions look_regions(const Shot& shot, const FrameView& view, const Frame& f
             const ViewSurface& vs = shot.view_surfaces[h.geometry];
             r.water[i] = water && !vs.terrain && vs.material == water_mat;
             // The near ground as a ground stroke paints it (not a tree's stroke in front).
-            r.near_ground[i] = vs.terrain && h.t < kNearGround && id >= 65536.0f && id != water_id;
+            r.near_ground[i] =
+                vs.terrain && h.t < kNearGround && id >= first_surface && id != water_id;
         }
     });
     return r;

@@ -566,7 +566,7 @@ void flatten_edits(const json& v, const std::string& ptr, std::vector<std::strin
 }
 
 // Reads the family's (or material's) edit object `key` (absent: none) into preset overrides.
-std::vector<std::string> family_edits(const json& f, const char* key, const std::string& ptr,
+std::vector<std::string> preset_edits(const json& f, const char* key, const std::string& ptr,
                                       std::vector<Problem>& problems) {
     std::vector<std::string> edits;
     const auto it = f.find(key);
@@ -615,6 +615,21 @@ void load_edited(std::vector<Problem>& problems, const std::string& source,
     }
 }
 
+// A shader preset read with a family's or material's edits of it (`edit_key`, laid out as the
+// file), its problems named as load_edited names them; false (the problems added) if it could
+// not be read.
+bool load_edited_shader(std::vector<Problem>& problems, const std::string& source,
+                        const std::string& name, const std::string& ptr,
+                        const std::string& edit_ptr, const std::vector<std::string>& edits,
+                        ShaderPreset& out) {
+    bool loaded = false;
+    load_edited(problems, source, ptr, edit_ptr, edits, [&] {
+        out = load_shader_preset(near_scene(name, source), source, ptr, edits);
+        loaded = true;
+    });
+    return loaded;
+}
+
 // Materials, terrain, water and rocks: the landscape under the trees (IV.7).
 void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
                      std::vector<Problem>& problems, std::set<std::string>& plain) {
@@ -642,7 +657,7 @@ void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
                 // Edits of the shader preset laid out as its file, as a family's
                 // leaf_shader_keys: one scene's haze or stroke size without a new preset.
                 const std::vector<std::string> edits =
-                    family_edits(m, "shader_keys", ptr, problems);
+                    preset_edits(m, "shader_keys", ptr, problems);
                 mat.name = name;
                 mat.graftal = load_style(mat.style, source, ptr + "/style", problems);
                 mat.imposters =
@@ -654,14 +669,9 @@ void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
                 }
                 load_into(problems, source, ptr + "/shader", [&] {
                     ShaderPreset sp;
-                    bool loaded = false;
-                    load_edited(problems, source, ptr + "/shader", ptr + "/shader_keys", edits,
-                                [&] {
-                                    sp = load_shader_preset(near_scene(shader, source), source,
-                                                            ptr + "/shader", edits);
-                                    loaded = true;
-                                });
-                    if (!loaded) return;
+                    if (!load_edited_shader(problems, source, shader, ptr + "/shader",
+                                            ptr + "/shader_keys", edits, sp))
+                        return;
                     if (!sp.has_surface)
                         throw InputError(source, ptr + "/shader",
                                          "shader \"" + shader +
@@ -944,11 +954,11 @@ void parse_families(const json& doc, const std::string& source, SceneDesc& s,
             r.claim("leaf_shader_keys");
             r.claim("bark_shader_keys");
             r.finish();
-            const std::vector<std::string> tree_edits = family_edits(f, "tree", ptr, problems);
+            const std::vector<std::string> tree_edits = preset_edits(f, "tree", ptr, problems);
             const std::vector<std::string> leaf_edits =
-                family_edits(f, "leaf_shader_keys", ptr, problems);
+                preset_edits(f, "leaf_shader_keys", ptr, problems);
             const std::vector<std::string> bark_edits =
-                family_edits(f, "bark_shader_keys", ptr, problems);
+                preset_edits(f, "bark_shader_keys", ptr, problems);
             family.graftal = load_style(family.style, source, ptr + "/style", problems);
             family.imposters =
                 load_imposters(family.imposters_name, source, ptr + "/imposters", problems);
@@ -969,14 +979,9 @@ void parse_families(const json& doc, const std::string& source, SceneDesc& s,
                     std::string(key) == "leaf_shader" ? leaf_edits : bark_edits;
                 load_into(problems, source, ptr + "/" + key, [&] {
                     ShaderPreset sp;
-                    bool loaded = false;
-                    load_edited(problems, source, ptr + "/" + key, ptr + "/" + key + "_keys", edits,
-                                [&] {
-                                    sp = load_shader_preset(near_scene(shader_name, source), source,
-                                                            ptr + "/" + key, edits);
-                                    loaded = true;
-                                });
-                    if (!loaded) return;
+                    if (!load_edited_shader(problems, source, shader_name, ptr + "/" + key,
+                                            ptr + "/" + key + "_keys", edits, sp))
+                        return;
                     if (sp.has_surface)
                         throw InputError(source, ptr + "/" + key,
                                          "shader \"" + shader_name +
