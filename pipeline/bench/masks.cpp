@@ -1,4 +1,4 @@
-// closed, flood, outline and boundary_length over byte masks.
+// closed, eroded, flood, outline and boundary_length over byte masks.
 #include "pipeline/bench/masks.h"
 
 #include <OpenImageIO/imagebuf.h>
@@ -19,6 +19,23 @@ Mask closed(const Mask& m, int w, int h, int r) {
         OIIO::ImageBufAlgo::erode(OIIO::ImageBufAlgo::dilate(padded, k, k), k, k);
     Mask out(m.size());
     shut.get_pixels(OIIO::ROI(r, r + w, r, r + h, 0, 1, 0, 1), OIIO::TypeDesc::UINT8, out.data());
+    return out;
+}
+
+Mask eroded(const Mask& m, int w, int h, int r) {
+    if (r <= 0) return m;
+    const int pw = w + 2 * r, ph = h + 2 * r;
+    // Padded with ones, so only the shape's own edge erodes it.
+    OIIO::ImageBuf padded(OIIO::ImageSpec(pw, ph, 1, OIIO::TypeDesc::UINT8));
+    const float one[] = {1.0f};
+    OIIO::ImageBufAlgo::fill(padded, one);
+    padded.set_pixels(OIIO::ROI(r, r + w, r, r + h, 0, 1, 0, 1), OIIO::TypeDesc::UINT8, m.data());
+    const int k = 2 * r + 1;
+    // A square's erosion is a row's then a column's: 2k reads a pixel instead of k^2.
+    const OIIO::ImageBuf worn =
+        OIIO::ImageBufAlgo::erode(OIIO::ImageBufAlgo::erode(padded, k, 1), 1, k);
+    Mask out(m.size());
+    worn.get_pixels(OIIO::ROI(r, r + w, r, r + h, 0, 1, 0, 1), OIIO::TypeDesc::UINT8, out.data());
     return out;
 }
 

@@ -1,5 +1,5 @@
 // Binary masks of a painted frame's pixels and the few operations the look's measures share:
-// closing, 8-connected regions, an outline with what it encloses, and a boundary's length.
+// closing, erosion, 8-connected regions, an outline with what it encloses, and a boundary's length.
 #pragma once
 
 #include <cstddef>
@@ -14,6 +14,10 @@ using Mask = std::vector<uint8_t>;
 // The mask closed (dilated, then eroded) by a square of side 2r + 1, padded by r so the frame's
 // edge does not cut the closing short (OpenImageIO's dilate and erode).
 Mask closed(const Mask& m, int w, int h, int r);
+
+// The mask eroded by a square of side 2r + 1; the frame's edge erodes nothing (a shape the frame
+// cuts keeps its cut side).
+Mask eroded(const Mask& m, int w, int h, int r);
 
 // Visits the 8-connected region of pixels equal to `value` (zero or not) from `start`, marking
 // `seen`; returns its size.

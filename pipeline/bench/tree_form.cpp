@@ -83,11 +83,17 @@ TreeForm measure_form(const SideMasks& m, const Tree& tree) {
     f.droop = L.position.empty() ? 0.0 : static_cast<double>(below) / L.position.size();
 
     const double extent = std::max(crown_w, crown_h);
+    // Masses: the crown closed over the gaps between its strokes, then worn down by kNeckRadius,
+    // so that masses joined only by a waist narrower than twice that come apart; a mass counts
+    // when its core holds kMassShare of all the cores (a stroke's leftover does not).
     const Mask clumped = closed(m.leaf, w, h, static_cast<int>(std::lround(kClumpRadius * extent)));
-    std::vector<bool> seen(clumped.size(), false);
-    for (size_t i = 0; i < clumped.size(); ++i)
-        if (clumped[i] && !seen[i])
-            f.clumps += flood(clumped, w, h, i, 1, seen) >= kClumpArea * leaves;
+    const Mask cores = eroded(clumped, w, h, static_cast<int>(std::lround(kNeckRadius * extent)));
+    size_t core_total = 0;
+    for (const uint8_t c : cores) core_total += c != 0;
+    std::vector<bool> seen(cores.size(), false);
+    for (size_t i = 0; i < cores.size(); ++i)
+        if (cores[i] && !seen[i])
+            f.clumps += flood(cores, w, h, i, 1, seen) >= kMassShare * core_total;
 
     // The outline: the crown closed, and every gap it then encloses filled.
     const Mask shut = outline(m.leaf, w, h, static_cast<int>(std::lround(kOutlineRadius * extent)));

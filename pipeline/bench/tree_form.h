@@ -15,16 +15,19 @@ struct TreeForm {
     double clear_trunk = 0;  // trunk clear of leaves, over the tree's height
     double droop = 0;        // share of the leaves below the base of the limb they grow from
     double hem = 0;          // how high the crown's sides end, over the tree's height (kHemSide)
-    int clumps = 0;          // separate masses of leaves (kClumpRadius, kClumpArea)
+    int clumps = 0;          // separate masses of leaves (kClumpRadius, kNeckRadius, kMassShare)
     double holes = 0;        // share of the crown's outline (kOutlineRadius) where sky shows
 };
 
 // What a stroke is as a mass and as an outline, in fractions of the crown's larger extent:
-// leaf pixels closer than 2 x kClumpRadius belong to one clump, and a clump counts when it holds
-// at least kClumpArea of the leaf pixels; the outline closes gaps narrower than
-// 2 x kOutlineRadius and fills what it then encloses.
+// leaf pixels closer than 2 x kClumpRadius belong to one mass; masses joined only by a waist
+// narrower than 2 x kNeckRadius are separate (a painter reads two lobes on a thin waist as two
+// masses, as Corot's oaks are read), and one counts when its core, what is left after wearing
+// kNeckRadius off the crown, holds at least kMassShare of all the cores. The outline closes
+// gaps narrower than 2 x kOutlineRadius and fills what it then encloses.
 inline constexpr double kClumpRadius = 0.015;
-inline constexpr double kClumpArea = 0.01;
+inline constexpr double kNeckRadius = 0.08;
+inline constexpr double kMassShare = 0.05;
 inline constexpr double kOutlineRadius = 0.04;
 // The crown's sides are the outer kHemSide of its width each way; their hem is where their
 // lowest leaves end, less the lowest kHemStray of those leaves (a stray stroke does not lower

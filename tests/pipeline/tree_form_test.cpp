@@ -86,6 +86,23 @@ TEST(TreeForm, SeparateMassesAreClumpsAndEnclosedSkyIsHoles) {
     EXPECT_EQ(r.clumps, 1);
     const double sky = M_PI * 50 * 50 - 8 * 30;  // the trunk rises 30 rows into the hole
     EXPECT_NEAR(r.holes, sky / (M_PI * 120 * 120), 0.01);
+    // Two discs of radius 70, 6 px apart: the closing (kClumpRadius) bridges them with a
+    // waist some 29 px tall, narrower than the 47 px square that wears kNeckRadius off a crown
+    // 287 px wide, so two masses. Drawn 60 px apart they share a waist 126 px tall: one mass.
+    const SideMasks lobes = masks(150, [](int x, int y) {
+        return in_disc(x, y, 127, 150, 70) || in_disc(x, y, 273, 150, 70);
+    });
+    EXPECT_EQ(measure_form(lobes, Tree{}).clumps, 2);
+    const SideMasks fused = masks(150, [](int x, int y) {
+        return in_disc(x, y, 170, 150, 70) || in_disc(x, y, 230, 150, 70);
+    });
+    EXPECT_EQ(measure_form(fused, Tree{}).clumps, 1);
+    // A bud of radius 45, 6 px off a crown's side: a core of its own, but of a couple of
+    // hundred pixels against the crown's some 13,000, under kMassShare, so not a mass.
+    const SideMasks bud = masks(150, [](int x, int y) {
+        return in_disc(x, y, 200, 150, 100) || in_disc(x, y, 351, 150, 45);
+    });
+    EXPECT_EQ(measure_form(bud, Tree{}).clumps, 1);
     // Many 6 px specks a few pixels apart are one mass, not hundreds.
     const SideMasks specks = masks(
         150, [](int x, int y) { return in_disc(x, y, 200, 150, 100) && x % 9 < 6 && y % 9 < 6; });
