@@ -136,7 +136,7 @@ family() {
 }
 family willow "a dark haystack before; now as wide as tall, its branchlets falling in a curtain nearly to the ground."
 family poplar "a column three to four times as tall as wide, branched nearly to the ground."
-family oak "a round bush hiding its trunk before; now a short bole bare to half its height under a few limbs spreading nearly level, the sky through broken masses."
+family oak "a round bush hiding its trunk before; now a short bole bare to half its height under a few limbs spreading nearly level, each carrying its own mass of leaves, the sky between them; every member broader than tall."
 family birch "a narrow, airy crown on a white trunk that shows, its branchlets drooping."
 family pine "the umbrella on a tall bare trunk (the stone pine read as its species before too)."
 family shrub "a garden shrub, branched from the ground (no species; unchanged)."
