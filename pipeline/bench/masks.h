@@ -1,5 +1,6 @@
 // Binary masks of a painted frame's pixels and the few operations the look's measures share:
-// closing, erosion, 8-connected regions, an outline with what it encloses, and a boundary's length.
+// closing, erosion, 8-connected regions, an outline with what it encloses, and a boundary's
+// length.
 #pragma once
 
 #include <cstddef>

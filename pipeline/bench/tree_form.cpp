@@ -94,6 +94,8 @@ TreeForm measure_form(const SideMasks& m, const Tree& tree) {
     for (size_t i = 0; i < cores.size(); ++i)
         if (cores[i] && !seen[i])
             f.clumps += flood(cores, w, h, i, 1, seen) >= kMassShare * core_total;
+    // A crown thinner everywhere than the waist (a strand, a sapling) is still one mass.
+    if (core_total == 0) f.clumps = 1;
 
     // The outline: the crown closed, and every gap it then encloses filled.
     const Mask shut = outline(m.leaf, w, h, static_cast<int>(std::lround(kOutlineRadius * extent)));

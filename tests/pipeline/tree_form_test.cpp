@@ -103,6 +103,10 @@ TEST(TreeForm, SeparateMassesAreClumpsAndEnclosedSkyIsHoles) {
         return in_disc(x, y, 200, 150, 100) || in_disc(x, y, 351, 150, 45);
     });
     EXPECT_EQ(measure_form(bud, Tree{}).clumps, 1);
+    // A strand 12 px wide, thinner everywhere than the waist: worn away whole, still one mass.
+    const SideMasks strand =
+        masks(150, [](int x, int y) { return y >= 40 && y < 300 && std::abs(x - 230) < 6; });
+    EXPECT_EQ(measure_form(strand, Tree{}).clumps, 1);
     // Many 6 px specks a few pixels apart are one mass, not hundreds.
     const SideMasks specks = masks(
         150, [](int x, int y) { return in_disc(x, y, 200, 150, 100) && x % 9 < 6 && y % 9 < 6; });
