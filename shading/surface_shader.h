@@ -29,6 +29,9 @@ struct SurfaceShaderParams {
     // (degrees about +y from +x) where the ground is level.
     float lay = 0.0f;
     float lay_azimuth = 0.0f;
+    // Base strokes' length over width, as a factor on the shader's stroke_aspect: a brush drawn
+    // long across a near meadow while the tufts keep their shape. 1: as the tufts.
+    float base_aspect = 1.0f;
     bool operator==(const SurfaceShaderParams&) const = default;
 };
 
@@ -75,6 +78,12 @@ inline glm::vec3 surface_stroke_direction(const SurfaceShaderParams& p, const gl
     const glm::vec3 d = up * (1.0f - lay) + lie * lay;
     const float len = glm::length(d);
     return len > 1e-6f && std::isfinite(len) ? d / len : up;
+}
+
+// The factor on the shader's stroke_aspect for a stroke at this height: base_aspect for base
+// strokes, 1 for detail strokes.
+inline float surface_aspect(const SurfaceShaderParams& p, float height) {
+    return is_detail(p, height) ? 1.0f : p.base_aspect;
 }
 
 // Stroke noise frequencies across (s) and along (t) the stroke.

@@ -156,6 +156,10 @@ void visit_surface_shader(P& p, V& v) {
             v.real("lay_azimuth", p.lay_azimuth, {-360, 360}, "deg",
                    "Where the ground is level, the direction lying strokes take: degrees about "
                    "+y from +x (90: towards -z, away from a camera looking down -z).");
+            v.real("base_aspect", p.base_aspect, {0.1, 10}, "",
+                   "Base strokes' length over width as a factor on sprite/stroke_aspect (1: the "
+                   "tufts' shape): above 1 a long brush laid across the ground while the tufts "
+                   "keep theirs.");
         });
 }
 

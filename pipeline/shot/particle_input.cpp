@@ -29,7 +29,7 @@ ParticleInput surface_input(const ParticleSource& shot, size_t chunk, size_t j, 
     in.normal = lighting_normal(S.normal(j), S.random_normal(j), m.surface->random_normal_weight);
     in.tangent = surface_stroke_direction(*m.surface, S.normal(j), S.height(j));
     in.width = w;
-    in.length = w * m.shader->stroke_aspect;
+    in.length = w * m.shader->stroke_aspect * surface_aspect(*m.surface, S.height(j));
     in.label = S.label[j];
     in.surface = &S;
     in.index = j;

@@ -16,6 +16,7 @@
 #include "pipeline/shot/leaf_basis.h"
 #include "shading/pigment.h"
 #include "shading/portable_math.h"
+#include "shading/surface_shader.h"
 
 namespace pleinair {
 
@@ -129,7 +130,8 @@ std::vector<std::vector<StrokeCaster>> imported_casters(const Shot& shot, const 
             const float jitter = stroke_size_jitter(p, in.label);
             sun_card_axes(p, in.label, a0, b0, k.axis_s, k.axis_t);
             k.half_w = static_cast<float>(0.5 * in.width * jitter);
-            k.half_l = k.half_w * p.stroke_aspect;
+            k.half_l = k.half_w * p.stroke_aspect *
+                       surface_aspect(*shot.materials[mat].surface, S.height(j));
             k.noise = noise_of(stroke_constants(p, glm::dot(in.normal, sun), 0.5f, 0.5f, in.label,
                                                 0, 1.0f, 0.0f, 0.0f, false, false));
             out[S.material[j]].push_back(k);

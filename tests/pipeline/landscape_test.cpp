@@ -16,6 +16,9 @@
 #include "pipeline/input/error.h"
 #include "pipeline/input/scene.h"
 #include "pipeline/output/image_io.h"
+#include "pipeline/shot/particle_input.h"
+#include "pipeline/shot/shot.h"
+#include "shading/surface_shader.h"
 
 namespace pleinair {
 namespace {
@@ -407,6 +410,38 @@ TEST(Landscape, AMaterialsShaderKeysEditItsShader) {
     EXPECT_NE(problem("3").find("/materials/hazy/shader_keys: expected an object"),
               std::string::npos)
         << problem("3");
+}
+
+// surface/base_aspect lengthens a material's base strokes and leaves its tufts' shape: every
+// surface particle's stroke is its width times the shader's aspect, times base_aspect below
+// the detail threshold.
+TEST(Landscape, BaseAspectLengthensTheBaseStrokesOnly) {
+    const Shot shot = build_shot(parse_scene(R"({
+        "camera": {"position": [0, 2, 14], "look_at": [0, 1.5, 0], "width": 64, "height": 48},
+        "materials": {"long": {"shader": "grass", "shader_keys": {"surface": {"base_aspect": 2}}}},
+        "terrain": {"seed": 2, "min": [-10, -10], "max": [10, 10], "resolution": 9,
+                    "material": "long",
+                    "strokes": {"particle_spans_u": 12, "particle_spans_v": 12}}})",
+                                             "long.json"));
+    const ParticleSource particles = shot.particles();
+    const size_t trees = shot.trees->size();
+    size_t base = 0, detail = 0;
+    for (size_t c = 0; c < shot.land->chunks.size(); ++c) {
+        const SurfaceParticles& S = shot.land->chunks[c];
+        for (size_t j = 0; j < S.size(); ++j) {
+            MaterialId mat;
+            const ParticleInput in =
+                particle_input(particles, trees + c, SpriteKind::kSurface, j,
+                               particle_origin(particles, trees + c, SpriteKind::kSurface, j), mat);
+            const SpriteMaterial& m = shot.materials[mat];
+            const bool tuft = is_detail(*m.surface, S.height(j));
+            const double aspect = m.shader->stroke_aspect * (tuft ? 1.0 : 2.0);
+            ASSERT_NEAR(in.length / in.width, aspect, 1e-5 * aspect) << j;
+            ++(tuft ? detail : base);
+        }
+    }
+    EXPECT_GT(base, 50u);
+    EXPECT_GT(detail, 10u);
 }
 
 }  // namespace

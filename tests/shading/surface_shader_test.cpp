@@ -108,5 +108,14 @@ TEST(SurfaceShader, LaidStrokesFollowTheContourOrTheBrushAzimuth) {
     EXPECT_NEAR(half.x, std::sqrt(0.5f), 1e-5f);
 }
 
+TEST(SurfaceShader, BaseAspectLengthensOnlyTheBaseStrokes) {
+    SurfaceShaderParams p;
+    EXPECT_EQ(surface_aspect(p, 0.2f), 1.0f);  // the default: every stroke as the tufts
+    p.base_aspect = 1.5f;
+    EXPECT_EQ(surface_aspect(p, 0.2f), 1.5f);                        // a base stroke
+    EXPECT_EQ(surface_aspect(p, p.detail_threshold + 0.01f), 1.0f);  // a tuft keeps its shape
+    EXPECT_EQ(surface_aspect(p, p.detail_threshold), 1.5f);          // at the threshold, still base
+}
+
 }  // namespace
 }  // namespace pleinair
