@@ -8,35 +8,41 @@ namespace pleinair {
 
 namespace OIIO = OIIO_NAMESPACE;
 
+namespace {
+
+// The mask in an image padded by r each way with `pad` (0 or 1), so a square of side 2r + 1
+// never reaches past the buffer; and the mask's own pixels back out of such an image.
+OIIO::ImageBuf padded(const Mask& m, int w, int h, int r, float pad) {
+    OIIO::ImageBuf out(OIIO::ImageSpec(w + 2 * r, h + 2 * r, 1, OIIO::TypeDesc::UINT8));
+    const float fill[] = {pad};
+    OIIO::ImageBufAlgo::fill(out, fill);
+    out.set_pixels(OIIO::ROI(r, r + w, r, r + h, 0, 1, 0, 1), OIIO::TypeDesc::UINT8, m.data());
+    return out;
+}
+
+Mask unpadded(const OIIO::ImageBuf& b, int w, int h, int r) {
+    Mask out(static_cast<size_t>(w) * h);
+    b.get_pixels(OIIO::ROI(r, r + w, r, r + h, 0, 1, 0, 1), OIIO::TypeDesc::UINT8, out.data());
+    return out;
+}
+
+}  // namespace
+
 Mask closed(const Mask& m, int w, int h, int r) {
     if (r <= 0) return m;
-    const int pw = w + 2 * r, ph = h + 2 * r;
-    OIIO::ImageBuf padded(OIIO::ImageSpec(pw, ph, 1, OIIO::TypeDesc::UINT8));
-    OIIO::ImageBufAlgo::zero(padded);
-    padded.set_pixels(OIIO::ROI(r, r + w, r, r + h, 0, 1, 0, 1), OIIO::TypeDesc::UINT8, m.data());
     const int k = 2 * r + 1;
-    const OIIO::ImageBuf shut =
-        OIIO::ImageBufAlgo::erode(OIIO::ImageBufAlgo::dilate(padded, k, k), k, k);
-    Mask out(m.size());
-    shut.get_pixels(OIIO::ROI(r, r + w, r, r + h, 0, 1, 0, 1), OIIO::TypeDesc::UINT8, out.data());
-    return out;
+    return unpadded(
+        OIIO::ImageBufAlgo::erode(OIIO::ImageBufAlgo::dilate(padded(m, w, h, r, 0.0f), k, k), k, k),
+        w, h, r);
 }
 
 Mask eroded(const Mask& m, int w, int h, int r) {
     if (r <= 0) return m;
-    const int pw = w + 2 * r, ph = h + 2 * r;
-    // Padded with ones, so only the shape's own edge erodes it.
-    OIIO::ImageBuf padded(OIIO::ImageSpec(pw, ph, 1, OIIO::TypeDesc::UINT8));
-    const float one[] = {1.0f};
-    OIIO::ImageBufAlgo::fill(padded, one);
-    padded.set_pixels(OIIO::ROI(r, r + w, r, r + h, 0, 1, 0, 1), OIIO::TypeDesc::UINT8, m.data());
     const int k = 2 * r + 1;
-    // A square's erosion is a row's then a column's: 2k reads a pixel instead of k^2.
-    const OIIO::ImageBuf worn =
-        OIIO::ImageBufAlgo::erode(OIIO::ImageBufAlgo::erode(padded, k, 1), 1, k);
-    Mask out(m.size());
-    worn.get_pixels(OIIO::ROI(r, r + w, r, r + h, 0, 1, 0, 1), OIIO::TypeDesc::UINT8, out.data());
-    return out;
+    // Padded with ones, so only the shape's own edge erodes it. A square's erosion is a row's
+    // then a column's: 2k reads a pixel instead of k^2.
+    const OIIO::ImageBuf b = padded(m, w, h, r, 1.0f);
+    return unpadded(OIIO::ImageBufAlgo::erode(OIIO::ImageBufAlgo::erode(b, k, 1), 1, k), w, h, r);
 }
 
 size_t flood(const Mask& m, int w, int h, size_t start, uint8_t value, std::vector<bool>& seen) {
