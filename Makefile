@@ -12,7 +12,7 @@ DEPS := build-essential cmake ninja-build libopenmesh-dev libglm-dev libopenimag
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 FUZZ_BUILD ?= build-fuzz
-# Seconds each fuzz target runs in `make fuzz` (CI: about a minute each).
+# Seconds each fuzz target runs in `make fuzz` (CI: 45 s each, to keep its run under an hour).
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := tree_preset shader_preset palette scene set_value studio_request particle_file graftal \
                 imposter
@@ -67,7 +67,8 @@ test-studio: build
 # repeat, shot after shipped shot, paths every other test runs: that the benches measure the
 # frames render paints, and that the open sky keeps to its palette (17 minutes of test time under
 # the sanitizers; both run in `make test`). Every shipped shot still runs here, through render
-# and animate (OneFrame.RenderAndAnimatePaintTheSamePixelsForEveryShippedShot).
+# and animate (OneFrame.RenderAndAnimatePaintTheSamePixelsForEveryShippedShot, which renders only
+# its middle frame alone when sanitized).
 SAN_SKIP := OneFrame\.(BenchesMeasureTheFramesRenderAndAnimatePaint|TheOpenSkyKeepsToItsPaletteInEveryShippedScene)
 test-sanitize: deps
 	cmake -S . -B $(SAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
