@@ -104,6 +104,7 @@ struct LeafParams {
 struct TreeParams {
     std::string name = "tree";
     std::string description;
+    std::string bark_palette;  // the species' bark colours, where a scene names none
     double unit = 1;
     int subdivision_levels = 2;
     glm::dvec3 center_offset{0, 0, 0};
@@ -183,6 +184,10 @@ template <class P, class V>
 void visit_tree_params(P& p, V& v) {
     v.text("name", p.name, "Short name of the family.");
     v.text("description", p.description, "One or two lines on what the family looks like.");
+    v.text("bark_palette", p.bark_palette,
+           "Palette the bark is painted with on `family`'s contact sheet and in a scene whose "
+           "family names none (a silver birch's white bark: \"birch-bark\"); empty: the bark "
+           "shader's.");
     v.number("unit", p.unit, Range{1e-6, 1e6}, "world",
              "Size of one tree unit in world units; every length of the preset is in tree units.");
     v.integer("subdivision_levels", p.subdivision_levels, Range{0, 4},

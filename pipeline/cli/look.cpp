@@ -37,12 +37,14 @@ void print_crowns_and_palette(const std::string& name, const Shot& shot, const F
         "\n| scene | crowns | crowns' medians: sky inside / edge / bark inside | weighed by area: "
         "sky inside / edge / bark inside | chroma: mean / p95 | warm accents | L* median | L* in "
         "0-20 / 20-40 / 40-60 / 60-80 / 80-100 |\n|---|---:|---:|---:|---:|---:|---:|---:|\n");
+    // Shares of the frame as percentages, to the digits their targets need: a warm accent is a
+    // few hundredths of a percent, the darkest band a percent or two (BENCHMARKS.md).
     std::printf(
-        "| %s | %zu | %.3f / %.2f / %.3f | %.3f / %.2f / %.3f | %.1f / %.1f | %.4f | %.1f | %.2f / "
-        "%.2f / %.2f / %.2f / %.2f |\n",
+        "| %s | %zu | %.3f / %.2f / %.3f | %.3f / %.2f / %.3f | %.1f / %.1f | %.3f%% | %.1f | "
+        "%.2f%% / %.1f%% / %.1f%% / %.1f%% / %.1f%% |\n",
         name.c_str(), c.pixels, c.sky, c.edge, c.bark, a.sky, a.edge, a.bark, p.chroma_mean,
-        p.chroma_p95, p.warm, p.lightness_median, p.lightness[0], p.lightness[1], p.lightness[2],
-        p.lightness[3], p.lightness[4]);
+        p.chroma_p95, 100 * p.warm, p.lightness_median, 100 * p.lightness[0], 100 * p.lightness[1],
+        100 * p.lightness[2], 100 * p.lightness[3], 100 * p.lightness[4]);
 }
 
 // The third table: the near ground's brush (issue 27 §4): its texture at the two scales, and
@@ -105,7 +107,7 @@ int run_bench_look(const BenchCommand& cmd) {
         "|\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     std::printf(
         "| %s%s | %.2f / %.2f | %.2f / %.2f | %.2f / %.2f | %llu | %.2f | %.3f (%llu) | %.3f / "
-        "%.3f (%llu) | %.2f / %.2f | %.0f ms |\n",
+        "%.4f (%llu) | %.2f / %.2f | %.0f ms |\n",
         cmd.scene.c_str(), sets.c_str(), sky2, trees2, sky8, trees8,
         trees2 > 0 ? sky2 / trees2 : 0.0, trees8 > 0 ? sky8 / trees8 : 0.0,
         static_cast<unsigned long long>(sky_px), mean_flat_run(f, r.sky), mirror,

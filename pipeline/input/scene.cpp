@@ -989,15 +989,28 @@ void parse_families(const json& doc, const std::string& source, SceneDesc& s,
                                              "material's strokes read; leaves and bark would "
                                              "ignore it");
                     params = sp.params;
-                    std::string pal = palette_name.empty() ? sp.palette : palette_name;
+                    // The scene's palette, else the species' bark (its tree preset's: a bad
+                    // name is that file's key, told under the family's preset key), else the
+                    // shader's.
+                    std::string pal = palette_name, where = ptr + "/" + pkey, from = source,
+                                key = where;
+                    const bool species = pal.empty() && std::string(pkey) == "bark_palette" &&
+                                         !family.params.bark_palette.empty();
+                    if (species) {
+                        pal = family.params.bark_palette, where = ptr + "/preset";
+                        from = resolve_preset("trees", near_scene(family.preset, source), source,
+                                              where)
+                                   .string();
+                        key = "/bark_palette";
+                    }
+                    if (pal.empty()) pal = sp.palette;
                     if (pal.empty())
-                        throw InputError(source, ptr + "/" + pkey,
+                        throw InputError(source, where,
                                          "the shader names no palette; give one here");
                     // A bad palette file is the palette key's problem, not the shader's.
-                    load_into(problems, source, ptr + "/" + pkey, [&] {
-                        palette = shader_palette(
-                            load_palette(near_scene(pal, source), source, ptr + "/" + pkey),
-                            params);
+                    load_into(problems, source, where, [&] {
+                        palette =
+                            shader_palette(load_palette(near_scene(pal, from), from, key), params);
                     });
                 });
             };

@@ -69,7 +69,14 @@ Family sheet_family(const std::string& name, const std::string& preset, const Tr
     family.leaf_shader = leaves.params;
     family.bark_shader = bark.params;
     family.leaf_palette = shader_palette(load_palette(leaves.palette), leaves.params);
-    family.bark_palette = shader_palette(load_palette(bark.palette), bark.params);
+    // The species' bark where its preset names one (the birch's white), as a scene paints it;
+    // a name that finds no palette is the preset file's error.
+    family.bark_palette =
+        shader_palette(params.bark_palette.empty()
+                           ? load_palette(bark.palette)
+                           : load_palette(params.bark_palette, resolve_tree_preset(preset).string(),
+                                          "/bark_palette"),
+                       bark.params);
     if (style != "strokes") {
         family.style = style;
         family.graftal = std::make_shared<const GraftalDesc>(load_graftal(style, "--style"));
