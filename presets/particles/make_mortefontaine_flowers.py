@@ -3,7 +3,7 @@
 
 Corot's Souvenir de Mortefontaine keeps one warm accent, the rose and cream of the figures under
 the small tree on the left; pleinair paints no figures, so a drift of flowers on the bank by the
-leaning birch carries it: mostly cream and pale yellow heads, one in three rose or madder red.
+leaning birch carries it: cream and pale yellow heads, one in two rose or madder red.
 Laid out on flat ground (y up, y = height above it): the scene places them with `on_terrain`.
 Binary little endian, with Houdini's attributes: pscale (a radius), id, and the colour (red,
 green, blue as uchar sRGB). Pure Python, seeded: running it again writes the same bytes.
@@ -21,7 +21,7 @@ drifts = [((-12.0, 20.0), 1.8, 70), ((-8.5, 23.5), 1.2, 40), ((-15.0, 17.5), 1.2
 for (cx, cz), spread, count in drifts:
     for _ in range(count):
         x, z = rng.gauss(cx, spread), rng.gauss(cz, spread * 0.6)
-        warm = rng.random() < 0.33
+        warm = rng.random() < 0.5
         if warm:
             r, g, b = rng.choice([(196, 112, 100), (184, 84, 64), (206, 132, 116)])
         else:
