@@ -44,7 +44,7 @@ TEST(Family, OneAndTwoThreadsGiveTheSameBytes) {
 // A tree preset's bark_palette paints the species' bark where a scene names no palette (the
 // birch's white bark), in a scene and on `family`'s contact sheet alike; a scene's own
 // bark_palette wins; a preset without one keeps the shader's; a palette that names nothing is
-// the preset file's error, found when it is loaded.
+// told as the preset file's key, in a scene under the family's preset key.
 TEST(Family, TheSpeciesBarkIsTheDefaultAndASceneMayPaintItOtherwise) {
     const SceneDesc s = parse_scene(R"({"families": {
         "birch": {"preset": "birch"},
