@@ -1,6 +1,8 @@
 // InputError and its one-line-per-problem format.
 #include "pipeline/input/error.h"
 
+#include <algorithm>
+
 namespace pleinair {
 
 std::string pointer_token(const std::string& key) {
@@ -53,10 +55,27 @@ std::string format_problems(const std::string& source, const std::vector<Problem
     return s;
 }
 
+namespace {
+
+// One line a key: a value that breaks two rules (out of range and not whole) is told by the
+// first rule found broken; other keys keep their own lines.
+std::vector<Problem> first_per_key(std::vector<Problem> problems) {
+    std::vector<Problem> out;
+    for (Problem& p : problems) {
+        const bool told = !p.pointer.empty() && std::any_of(out.begin(), out.end(), [&](auto& q) {
+            return q.pointer == p.pointer;
+        });
+        if (!told) out.push_back(std::move(p));
+    }
+    return out;
+}
+
+}  // namespace
+
 InputError::InputError(std::string source, std::vector<Problem> problems)
-    : std::runtime_error(format_problems(source, problems)),
+    : std::runtime_error(format_problems(source, first_per_key(problems))),
       source_(std::move(source)),
-      problems_(std::move(problems)) {}
+      problems_(first_per_key(std::move(problems))) {}
 
 InputError::InputError(std::string source, std::string pointer, std::string message)
     : InputError(std::move(source),

@@ -229,6 +229,15 @@ TEST(Presets, EveryProblemGetsItsOwnLine) {
     EXPECT_EQ(lines[0], "presets/trees/oak.json: /lod/x: unknown key");
     EXPECT_EQ(lines[1], "presets/trees/oak.json: /unit: must be in [1e-06, 1e+06], got 0");
     EXPECT_EQ(lines[2], "presets/trees/oak.json: /leaves/probability: must be in [0, 1], got 2");
+    // A value breaking two rules of its key (out of range, not whole; above its partner) is one
+    // line, the first rule's; two keys are two lines.
+    EXPECT_EQ(problems_of(R"({"leaves": {"branching_steps": 0.5}})"),
+              std::vector<std::string>{
+                  "presets/trees/oak.json: /leaves/branching_steps: must be in [1, 64], got 0.5"});
+    EXPECT_EQ(problems_of(R"({"branches": {"min_height": 2}, "trunk": {"taper": -1}})"),
+              (std::vector<std::string>{
+                  "presets/trees/oak.json: /trunk/taper: must be in [0, 1], got -1",
+                  "presets/trees/oak.json: /branches/min_height: must be in [0, 1], got 2"}));
 }
 
 TEST(Presets, SyntaxErrorsGiveTheLine) {
