@@ -42,21 +42,6 @@ std::string printable(const std::string& text) {
     return s;
 }
 
-}  // namespace
-
-std::string format_problems(const std::string& source, const std::vector<Problem>& problems) {
-    std::string s;
-    for (const auto& p : problems) {
-        if (!s.empty()) s += '\n';
-        s.append(printable(source));
-        if (!p.pointer.empty()) s.append(": ").append(printable(p.pointer));
-        s.append(": ").append(printable(p.message));
-    }
-    return s;
-}
-
-namespace {
-
 // One line a key: a value that breaks two rules (out of range and not whole) is told by the
 // first rule found broken; other keys keep their own lines.
 std::vector<Problem> first_per_key(std::vector<Problem> problems) {
@@ -71,6 +56,17 @@ std::vector<Problem> first_per_key(std::vector<Problem> problems) {
 }
 
 }  // namespace
+
+std::string format_problems(const std::string& source, const std::vector<Problem>& problems) {
+    std::string s;
+    for (const auto& p : problems) {
+        if (!s.empty()) s += '\n';
+        s.append(printable(source));
+        if (!p.pointer.empty()) s.append(": ").append(printable(p.pointer));
+        s.append(": ").append(printable(p.message));
+    }
+    return s;
+}
 
 InputError::InputError(std::string source, std::vector<Problem> problems)
     : std::runtime_error(format_problems(source, first_per_key(problems))),

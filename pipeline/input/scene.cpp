@@ -966,11 +966,13 @@ void parse_families(const json& doc, const std::string& source, SceneDesc& s,
                 problems.push_back({ptr + "/preset", "missing: a tree preset name or file"});
                 continue;
             }
+            std::string preset_file;  // where a problem of the species' bark is told
             load_into(problems, source, ptr + "/preset", [&] {
-                auto file = resolve_preset("trees", near_scene(family.preset, source), source,
-                                           ptr + "/preset");
+                preset_file = resolve_preset("trees", near_scene(family.preset, source), source,
+                                             ptr + "/preset")
+                                  .string();
                 load_edited(problems, source, ptr + "/preset", ptr + "/tree", tree_edits,
-                            [&] { family.params = load_tree_preset(file, tree_edits); });
+                            [&] { family.params = load_tree_preset(preset_file, tree_edits); });
             });
             auto shader = [&](const std::string& shader_name, const std::string& palette_name,
                               const char* key, const char* pkey, StrokeShaderParams& params,
@@ -997,11 +999,8 @@ void parse_families(const json& doc, const std::string& source, SceneDesc& s,
                     const bool species = pal.empty() && std::string(pkey) == "bark_palette" &&
                                          !family.params.bark_palette.empty();
                     if (species) {
-                        pal = family.params.bark_palette, where = ptr + "/preset";
-                        from = resolve_preset("trees", near_scene(family.preset, source), source,
-                                              where)
-                                   .string();
-                        key = "/bark_palette";
+                        pal = family.params.bark_palette;
+                        where = ptr + "/preset", from = preset_file, key = "/bark_palette";
                     }
                     if (pal.empty()) pal = sp.palette;
                     if (pal.empty())
