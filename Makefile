@@ -119,12 +119,12 @@ gallery: build
 # Repaints every golden image's reference (tests/golden/README.md): look at them before
 # committing.
 # A case with an `animate` file is a frame of a shipped shot, painted by animate with the
-# arguments the file holds.
+# arguments the file holds (shot-NAME, or shot-NAME@WHEN for another frame of it).
 golden: build
 	for d in tests/golden/*/; do \
 	    if [ -f $$d/animate ]; then \
-	        tmp=$$(mktemp -d) && n=$$(basename $$d) && \
-	        $(BUILD)/pleinair animate $${n#shot-} $$(cat $$d/animate) -o $$tmp/f_####.png --progress log >/dev/null && \
+	        tmp=$$(mktemp -d) && n=$$(basename $$d) && n=$${n#shot-} && \
+	        $(BUILD)/pleinair animate $${n%@*} $$(cat $$d/animate) -o $$tmp/f_####.png --progress log >/dev/null && \
 	        mv $$tmp/f_*.png $$d/reference.png && rmdir $$tmp || exit 1; \
 	    else $(BUILD)/pleinair render $$d/scene.json -o $$d/reference.png || exit 1; fi; \
 	done

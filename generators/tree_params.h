@@ -101,6 +101,12 @@ struct LeafParams {
     FadeParams fade;
 };
 
+// Stiffness of a tree's parts against the wind (generators/wind.h): a part twice as stiff bends
+// half as far at the same wind.
+struct WindStiffness {
+    double trunk = 1, limbs = 1, leaves = 1;
+};
+
 struct TreeParams {
     std::string name = "tree";
     std::string description;
@@ -113,6 +119,7 @@ struct TreeParams {
     BranchParams twigs = default_twigs();
     LeafParams leaves;
     int lod_subdivision_levels = 1;
+    WindStiffness stiffness;
 
     static BranchParams default_twigs();
 };
@@ -283,6 +290,20 @@ void visit_tree_params(P& p, V& v) {
                              "faded out completely by the far circle.");
                 });
         });
+    v.object("stiffness",
+             "How the tree's parts resist the wind (the scene's /wind): a part twice as stiff "
+             "bends half as far.",
+             [&] {
+                 auto& w = p.stiffness;
+                 v.number("trunk", w.trunk, Range{0.05, 100}, "",
+                          "The trunk, bending from its root with the whole wind (an oak's is "
+                          "stiffer than a willow's).");
+                 v.number("limbs", w.limbs, Range{0.05, 100}, "",
+                          "Branches and twigs, each bending from where it leaves its parent.");
+                 v.number("leaves", w.leaves, Range{0.05, 100}, "",
+                          "The leaves' flutter about their own normal (an aspen's or a "
+                          "birch's: low).");
+             });
     v.object("lod",
              "The low-detail model (the thesis's LOD button): trunk and first-level "
              "branches only.",

@@ -248,6 +248,15 @@ CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& fram
     };
     Traced p_dry;
     Sum w_on, w_dry, w_boil;
+    // The wind: the trees' strokes' flicker in it, in still air, and boiling.
+    rep.wind = plan_frame(shot, on).wind;
+    FrameSettings calm = on;
+    calm.wind = false;
+    const std::function<bool(const Sprite&)> is_tree = [](const Sprite& sp) {
+        return sp.kind == SpriteKind::kLeaf || sp.kind == SpriteKind::kBark;
+    };
+    Traced p_calm;
+    Sum t_on, t_calm, t_boil;
     for (size_t n = 0; n < frames.size(); ++n) {
         const FrameView view = view_at(scene, frame_time(frames[n], scene.fps));
         boiling.noise_reseed = static_cast<uint32_t>(frames[n]) + 1;
@@ -256,6 +265,8 @@ CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& fram
         Traced c_off = paint_traced(shot, view, off), c_boil = paint_traced(shot, view, boiling);
         Traced c_dry;
         if (rep.water) c_dry = paint_traced(shot, view, dry);
+        Traced c_calm;
+        if (rep.wind) c_calm = paint_traced(shot, view, calm);
         PairOrders c_pairs = order_pairs(c_on);
         std::vector<float> c_presence = presences(shot, view, on.render);
         double area_on, l_on, area_off, l_off;
@@ -285,6 +296,11 @@ CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& fram
                 add(w_dry, flicker_between(p_dry, c_dry, is_water));
                 add(w_boil, flicker_between(p_boil, c_boil, is_water));
             }
+            if (rep.wind) {
+                add(t_on, flicker_between(p_on, c_on, is_tree));
+                add(t_calm, flicker_between(p_calm, c_calm, is_tree));
+                add(t_boil, flicker_between(p_boil, c_boil, is_tree));
+            }
             swaps_between(p_pairs, c_pairs, row.order_swaps, row.abrupt_swaps);
             rep.order_swaps += row.order_swaps, rep.abrupt_swaps += row.abrupt_swaps;
             for (size_t k = 0; k < c_presence.size(); ++k) {
@@ -304,6 +320,7 @@ CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& fram
         }
         p_on = std::move(c_on), p_frozen = std::move(c_frozen);
         p_off = std::move(c_off), p_boil = std::move(c_boil), p_dry = std::move(c_dry);
+        p_calm = std::move(c_calm);
         p_pairs = std::move(c_pairs);
         p_presence = std::move(c_presence);
         p_area_on = area_on, p_area_off = area_off;
@@ -316,6 +333,8 @@ CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& fram
     rep.flicker_boiling = mean(f_boil);
     rep.water_flicker = mean(w_on), rep.water_flicker_dry = mean(w_dry);
     rep.water_flicker_boiling = mean(w_boil);
+    rep.tree_flicker = mean(t_on), rep.tree_flicker_calm = mean(t_calm);
+    rep.tree_flicker_boiling = mean(t_boil);
     return rep;
 }
 

@@ -27,6 +27,10 @@ struct CoherenceReport {
     // boiling.
     bool water = false;
     double water_flicker = 0, water_flicker_dry = 0, water_flicker_boiling = 0;
+    // The same over the trees' strokes alone, when the shot's wind blows (wind): in the wind,
+    // in still air (the trees at rest, its floor) and boiling.
+    bool wind = false;
+    double tree_flicker = 0, tree_flicker_calm = 0, tree_flicker_boiling = 0;
     // Where the shot lies between its floor (0) and boiling (1).
     double flicker_score() const;
     // Strokes on screen in two consecutive frames whose presence (their fade times their
@@ -72,9 +76,10 @@ struct CoherenceReport {
 };
 
 // Paints `frames` of the shot four times (level of detail as planned, frozen at the first
-// frame, off, and with boiling noise), five when still water mirrors (and without its mirror),
-// and measures them. `progress` (optional) is called after each frame with the frames done;
-// `painted` (optional) with each frame number and its frame as planned, the frame `render
+// frame, off, and with boiling noise), once more when still water mirrors (without its mirror)
+// and when the wind blows (in still air), and measures them. `progress` (optional) is called after
+// each frame with the frames done; `painted` (optional) with each frame number and its frame as
+// planned, the frame `render
 // --frame` and `animate` paint (the trace it keeps changes no pixel).
 CoherenceReport measure_coherence(const Shot& shot, const std::vector<int>& frames,
                                   const FrameSettings& settings,

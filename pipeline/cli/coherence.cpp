@@ -86,6 +86,11 @@ int run_bench_coherence(const BenchCommand& cmd) {
             "\nStill water's strokes alone, flicker without the mirror / with it / boiling: "
             "%.4f / %.4f / %.4f\n",
             r.water_flicker_dry, r.water_flicker, r.water_flicker_boiling);
+    if (r.wind)
+        std::printf(
+            "\nThe trees' strokes alone, flicker in still air / in the wind / boiling: "
+            "%.4f / %.4f / %.4f\n",
+            r.tree_flicker_calm, r.tree_flicker, r.tree_flicker_boiling);
     if (!cmd.per_frame) return 0;
     std::printf(
         "\n| frame | area on | area off | on vs off | L* on | L* off | shape overlap | order "

@@ -9,6 +9,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "generators/wind.h"
 #include "pipeline/input/draft.h"
 #include "pipeline/input/error.h"
 #include "pipeline/input/graftal_io.h"
@@ -84,7 +85,7 @@ int run_tree(const TreeCommand& cmd) {
         auto t1 = std::chrono::steady_clock::now();
         ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
     }
-    if (!cmd.out.empty()) write_tree(tree, name, cmd.out);
+    if (!cmd.out.empty()) write_tree(tree, name, cmd.out, params.stiffness);
     if (cmd.stats) {
         std::sort(ms.begin(), ms.end());
         double median =
@@ -108,6 +109,17 @@ int run_tree(const TreeCommand& cmd) {
         j["leaves"] = tree.leaves.size();
         j["branches"] = tree.branches.size() - 1;
         j["bbox"] = {{"min", world(b.min)}, {"max", world(b.max)}};
+        // What the wind moves (generators/wind.h): the parts' stiffness, the joints (every
+        // limb's rings), and the particle attributes leaves.ply carries for it.
+        const WindRig rig = build_wind_rig(tree, nullptr);
+        j["wind"] = {
+            {"stiffness",
+             {{"trunk", params.stiffness.trunk},
+              {"limbs", params.stiffness.limbs},
+              {"leaves", params.stiffness.leaves}}},
+            {"joints", rig.center.size()},
+            {"reach", rig.reach},
+            {"attributes", {"limb", "limb_level", "pivot_x", "pivot_y", "pivot_z", "stiffness"}}};
         j["time_ms"] = {{"median", median}, {"repeat", ms.size()}};
         std::cout << j.dump() << std::endl;
     }
@@ -177,7 +189,7 @@ int run_family(const FamilyCommand& cmd) {
     save_preset(cmd.save_preset, params);
     if (cmd.out.empty()) return 0;
     std::vector<Tree> trees = generate_family(params, cmd.seed, cmd.count);
-    write_family(trees, name, cmd.seed, cmd.out);
+    write_family(trees, name, cmd.seed, cmd.out, params.stiffness);
     std::cout << "wrote " << trees.size() << " " << name << " trees to " << cmd.out << "\n";
     return 0;
 }

@@ -109,6 +109,13 @@ FramePlan plan_frame(const Shot& shot, const FrameSettings& settings) {
     add("canvas", plan.canvas,
         plan.canvas ? "a canvas weave under thin paint and at the strokes' edges"
                     : "render/canvas_weave is 0");
+    plan.wind = shot.plan.wind && settings.wind;
+    add("wind", plan.wind,
+        plan.wind ? "the /wind bends the trees at the frame's time; shadows are frozen: each "
+                    "stroke keeps the light it has at rest, and the shadows trees cast, the "
+                    "water's mirror of them and graftal crowns stay as they stand at rest"
+        : !shot.plan.wind ? "still air: no /wind, or one that never blows, or no trees"
+                          : "turned off for a baseline (coherence bench)");
     plan.bare_blend = settings.bare_blend;
     plan.trace = settings.trace;
     plan.noise_reseed = settings.noise_reseed;

@@ -36,6 +36,9 @@ struct FrameSettings {
     // The coherence bench only: false paints still water without its mirror (the baseline of
     // the water's flicker).
     bool reflections = true;
+    // The coherence bench only: false paints the trees at rest in a windy shot (the baseline
+    // of the wind's flicker).
+    bool wind = true;
     // Told when each stage starts (done 0) and how far the paint stage has come, for frames
     // long enough to report on; called from worker threads (the callee serializes).
     std::function<void(const char* stage, double done)> progress;
@@ -85,6 +88,7 @@ struct FramePlan {
     bool reflections = false;  // still water mirrors what its reflected rays find
     bool pigment = false;      // strokes mix as pigments (shading/pigment.h)
     bool canvas = false;       // a canvas weave under thin paint and at stroke edges
+    bool wind = false;         // the scene's wind poses the trees (wind_stage.h)
     bool trace = false;
     uint32_t noise_reseed = 0;
     std::vector<PassReport> decisions;

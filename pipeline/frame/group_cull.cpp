@@ -47,13 +47,14 @@ bool faded(const Shot& shot, const FrameLod& lod, size_t item, const ParticleClu
 }  // namespace
 
 ClusterFate cluster_fate(const Shot& shot, const FrameLod& lod, const Camera& cam,
-                         const RenderSettings& rs, size_t item, const ParticleCluster& c) {
+                         const RenderSettings& rs, size_t item, const ParticleCluster& c,
+                         double pad) {
     if (faded(shot, lod, item, c)) return ClusterFate::kFaded;
     // Survivors of a thinned crown are spread out and grown (lod.h).
     const bool spread =
         c.kind == SpriteKind::kLeaf && lod.leaves && !lod.trees.empty() && lod.trees[item].leaf > 0;
-    const glm::dvec3& lo = spread ? c.spread_lo : c.lo;
-    const glm::dvec3& hi = spread ? c.spread_hi : c.hi;
+    const glm::dvec3 lo = (spread ? c.spread_lo : c.lo) - glm::dvec3(pad);
+    const glm::dvec3 hi = (spread ? c.spread_hi : c.hi) + glm::dvec3(pad);
     const float scale = spread ? std::max(1.0f, lod.trees[item].growth) : 1.0f;
     double zmin = std::numeric_limits<double>::infinity();
     double x0 = zmin, y0 = zmin, x1 = -zmin, y1 = -zmin;

@@ -23,8 +23,10 @@ enum class ClusterFate : uint8_t {
 
 // Conservative: kFaded or kOffScreen only when the sprites stage, particle by particle, would
 // cull each of the cluster's particles for that reason. `cam` is the frame's camera (the level
-// of detail's may be another, lod.camera).
+// of detail's may be another, lod.camera). `pad` widens the cluster's bounds by as far as its
+// particles may have moved from them (the wind, world units).
 ClusterFate cluster_fate(const Shot& shot, const FrameLod& lod, const Camera& cam,
-                         const RenderSettings& rs, size_t item, const ParticleCluster& c);
+                         const RenderSettings& rs, size_t item, const ParticleCluster& c,
+                         double pad = 0);
 
 }  // namespace pleinair

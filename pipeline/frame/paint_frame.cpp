@@ -17,6 +17,7 @@
 #include "pipeline/frame/sprites.h"
 #include "pipeline/frame/tile_bins.h"
 #include "pipeline/frame/underpaint.h"
+#include "pipeline/frame/wind_stage.h"
 
 namespace pleinair {
 
@@ -79,8 +80,9 @@ Frame paint_frame(const Shot& shot, const FrameView& view_in, const FrameSetting
     const std::unique_ptr<RayScene> frame_sun = sun_scene_stage(ctx);
     const RayScene* sun_rays = frame_sun ? frame_sun.get() : shot.sun_rays.get();
     const FrameLod lod = lod_stage(ctx);
+    const FrameWind wind = wind_stage(ctx, lod);
     const SeenWindow seen = seen_window(shot.scene, view, settings.render);
-    SpriteSet sprites = sprites_stage(ctx, lod, sun_rays, seen);
+    SpriteSet sprites = sprites_stage(ctx, lod, wind, sun_rays, seen);
     if (plan.reflections) reflections_stage(ctx, sun_rays, sprites);
     if (plan.graftals) graftals_stage(ctx, sprites);
     if (plan.imposters) imposters_stage(ctx, sprites, seen);

@@ -24,6 +24,8 @@ namespace {
 // does to it.
 struct SpriteInput : ParticleInput {
     ParticleLod lod;
+    float spin = 0;        // the wind's turn of a leaf's stroke about its normal (radians)
+    float wind_speed = 0;  // the farther the wind moves it into or out of this frame (world)
 };
 
 // What every sprite of a frame shares.
@@ -34,7 +36,8 @@ struct SpriteContext {
     const FramePlan& plan;
     const FrameLod& lod;
     glm::vec3 sun;
-    double eye_speed;  // world units per frame
+    double eye_speed;       // world units per frame
+    const FrameWind* wind;  // null or off: the trees at rest
 };
 
 // A particle's stroke on screen at view depth z before the level of detail, in pixels: its
@@ -92,8 +95,10 @@ bool place_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in,
     // Two sprites overlapping on screen lie within the sum of their angular radii of each other
     // as seen from the eye, so the eye's travel changes their ranges' difference by at most the
     // sum of their swap speeds.
+    // The wind moves the particle itself by up to wind_speed a frame.
     out.swap_speed =
-        static_cast<float>(c.eye_speed * pmath::hypot(out.half_w, out.half_l) / c.cam.focal_px);
+        static_cast<float>(c.eye_speed * pmath::hypot(out.half_w, out.half_l) / c.cam.focal_px) +
+        in.wind_speed;
     // Stroke direction on screen: along the projected tangent (a normal-free frame, so a limb
     // seen end-on still gets one), jittered by the label.
     double angle = 0;
@@ -102,7 +107,7 @@ bool place_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in,
         double tx = glm::dot(t, c.cam.right), ty = -glm::dot(t, c.cam.up);
         if (tx * tx + ty * ty > 1e-8) angle = pmath::atan2(ty, tx) - 0.5 * M_PI;
     }
-    angle += stroke_angle_jitter(p, in.label);
+    angle += stroke_angle_jitter(p, in.label) + in.spin;
     out.ax = static_cast<float>(-pmath::sin(angle));
     out.ay = static_cast<float>(pmath::cos(angle));
     float ex, ey;
@@ -185,6 +190,26 @@ bool thin(const SpriteContext& c, const SpriteMaterial& m, size_t item, size_t j
     in.lod.scale *= grow;
     in.lod.growth *= grow;
     return true;
+}
+
+// Where the wind takes a tree's particle this frame (wind_stage.h): moved with its joint, its
+// directions turned, its stroke spun about its normal, and how fast it moves for the depth
+// order. Its ray origin moves along for the rays that follow it (shadows per fragment).
+void blow(const SpriteContext& c, size_t item, SpriteKind kind, size_t j, SpriteInput& in,
+          RayOrigin& o) {
+    const BuiltTree& b = (*c.shot.trees)[item];
+    const bool leaf = kind == SpriteKind::kLeaf;
+    const glm::vec3& local = leaf ? b.tree().leaves.position[j] : b.bark().position[j];
+    const WindMove m = wind_move(c.shot, *c.wind, item, leaf, j, local, in.label);
+    in.spin = m.spin;
+    if (!m.moved) return;
+    in.world += m.delta;
+    o.world += m.delta;
+    in.wind_speed = m.speed;
+    in.normal = glm::normalize(m.turn * in.normal);
+    if (glm::dot(in.tangent, in.tangent) > 0) in.tangent = glm::normalize(m.turn * in.tangent);
+    if (glm::dot(in.from_center, in.from_center) > 0)
+        in.from_center = glm::normalize(m.turn * in.from_center);
 }
 
 // The level of detail's fade, place and growth of a particle (lod.h); false when it has faded
@@ -353,8 +378,12 @@ struct ItemSprites {
         sp.item = static_cast<uint32_t>(item), sp.particle = static_cast<uint32_t>(j);
         if (c.lod.thin_small && !thin(c, shot.materials[mat], item, j, in))
             return void((++out.culled, ++out.thinned));
+        // Seen past the surfaces from where it stands at rest: the wind's sway never hides a
+        // stroke behind a trunk or a crest in one frame.
+        const RayOrigin at_rest = o;
+        if (c.wind && c.wind->on && kind != SpriteKind::kSurface) blow(c, item, kind, j, in, o);
         if (!place_sprite(c, mat, in, sp)) return void(++out.culled);
-        const float seen = visibility(c, input.seen, shot.materials[mat], in, origin, o, sp,
+        const float seen = visibility(c, input.seen, shot.materials[mat], in, origin, at_rest, sp,
                                       memo.empty() ? nullptr : memo.data(), slot, counters);
         if (!(seen > 0.0f)) return void(++out.culled);
         sp.fade *= seen;
@@ -390,9 +419,12 @@ struct ItemSprites {
     void by_cluster() {
         const Shot& shot = c.shot;
         const ItemClusters& ic = shot.clusters[item];
+        const bool tree = item < shot.trees->size();
         std::vector<uint32_t> shown[2];  // bark or surface, then leaves
         for (const ParticleCluster& cl : ic.clusters) {
-            const ClusterFate fate = cluster_fate(shot, c.lod, c.cam, c.rs, item, cl);
+            // A tree's clusters widened by as far as the wind moves any of its particles.
+            const double pad = tree && c.wind && c.wind->on ? c.wind->reach[item] : 0.0;
+            const ClusterFate fate = cluster_fate(shot, c.lod, c.cam, c.rs, item, cl, pad);
             if (fate == ClusterFate::kShown) {
                 std::vector<uint32_t>& to = shown[cl.kind == SpriteKind::kLeaf];
                 to.insert(to.end(), ic.order.begin() + cl.first,
@@ -408,7 +440,6 @@ struct ItemSprites {
             out.culled += n, out.grouped += n;
             if (fate == ClusterFate::kFaded) out.faded += n;
         }
-        const bool tree = item < shot.trees->size();
         const SpriteKind first = tree ? SpriteKind::kBark : SpriteKind::kSurface;
         // At most one sprite a particle looked at: one allocation, not a doubling series.
         out.sprites.reserve(shown[0].size() + shown[1].size());
@@ -432,7 +463,8 @@ SpriteSet make_sprites(const SpriteStageInput& input) {
                           input.plan,
                           input.lod,
                           glm::vec3(input.view.sun_direction),
-                          input.view.eye_speed};
+                          input.view.eye_speed,
+                          input.wind};
     const size_t items = shot.item_count();
     std::vector<SpriteSet> per_item(items);
     // Each item's part in the memory it had the frame before (buffer_pool.h): the parts and
@@ -483,13 +515,14 @@ SpriteSet make_sprites(const SpriteStageInput& input) {
     return all;
 }
 
-SpriteSet sprites_stage(const FrameContext& ctx, const FrameLod& lod, const RayScene* sun_rays,
-                        const SeenWindow& seen) {
+SpriteSet sprites_stage(const FrameContext& ctx, const FrameLod& lod, const FrameWind& wind,
+                        const RayScene* sun_rays, const SeenWindow& seen) {
     StagePhase phase(ctx, "sprites", true);
     const FramePlan& plan = ctx.plan;
     SpriteStageInput input{ctx.shot, ctx.view, plan, ctx.render(), lod, sun_rays, &seen};
     input.seen_memo = ctx.settings.seen_memo;
     input.buffers = ctx.settings.buffers;
+    input.wind = &wind;
     SpriteSet sprites = make_sprites(input);
     FrameReport& rep = ctx.report;
     rep.leaf_sprites = sprites.leaf, rep.bark_sprites = sprites.bark;

@@ -11,6 +11,7 @@
 #include "pipeline/frame/lod.h"
 #include "pipeline/frame/sprite.h"
 #include "pipeline/frame/stroke_size.h"
+#include "pipeline/frame/wind_stage.h"
 #include "pipeline/shot/graftal_draw.h"
 #include "pipeline/shot/materials.h"
 #include "shading/stroke_shader.h"
@@ -64,6 +65,8 @@ struct SpriteStageInput {
     bool group_culling = true;
     // Occlusion answers kept from the frames before (seen_memo.h); null casts every ray.
     SeenMemo* seen_memo = nullptr;
+    // The trees' poses in the wind this frame (wind_stage.h); null or off: at rest.
+    const FrameWind* wind = nullptr;
     // The sprite vectors' memory kept from the frame before (buffer_pool.h); null allocates it.
     BufferPool* buffers = nullptr;
 };
@@ -76,7 +79,7 @@ bool drawn_as_graftals(const Shot& shot, size_t item, SpriteKind kind, size_t pa
 
 // The sprites stage: make_sprites with the frame's light source and seen window, its counts in
 // the report and its pass line.
-SpriteSet sprites_stage(const FrameContext& ctx, const FrameLod& lod, const RayScene* sun_rays,
-                        const SeenWindow& seen);
+SpriteSet sprites_stage(const FrameContext& ctx, const FrameLod& lod, const FrameWind& wind,
+                        const RayScene* sun_rays, const SeenWindow& seen);
 
 }  // namespace pleinair

@@ -1,5 +1,6 @@
 // A camera track: keys in time interpolated by centripetal Catmull-Rom timed by a monotone cubic,
-// eased per key, optionally at constant speed along the path; the sun's direction by slerp.
+// eased per key, optionally at constant speed along the path; the sun's direction by slerp, the
+// wind's mean linearly and along the level arc.
 #include "pipeline/input/camera_track.h"
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "generators/tree_params.h"
+#include "generators/wind.h"
 #include "shading/portable_math.h"
 
 namespace pleinair {
@@ -413,6 +415,71 @@ std::vector<Problem> validate_sun_track(const std::vector<SunKey>& keys,
         }
         if (i > 0 && finite(keys[i - 1].direction) && keys[i - 1].direction != glm::dvec3(0.0) &&
             glm::dot(glm::normalize(d), glm::normalize(keys[i - 1].direction)) < -1 + 1e-9)
+            problems.push_back({at, "points opposite to key " + std::to_string(i - 1) +
+                                        "'s: no single arc joins them; add a key between"});
+    }
+    return problems;
+}
+
+namespace {
+
+glm::dvec3 level(const glm::dvec3& d) {
+    const glm::dvec3 l(d.x, 0.0, d.z);
+    const double n = glm::length(l);
+    return n > 1e-12 && std::isfinite(n) ? l / n : glm::dvec3(1.0, 0.0, 0.0);
+}
+
+}  // namespace
+
+WindKey wind_at(const WindDesc& wind, double t) {
+    const std::vector<WindKey>& keys = wind.track;
+    WindKey out{t, wind.strength, level(wind.direction)};
+    if (keys.empty()) return out;
+    if (!(t > keys.front().time)) return {t, keys.front().strength, level(keys.front().direction)};
+    if (t >= keys.back().time) return {t, keys.back().strength, level(keys.back().direction)};
+    const auto it = std::upper_bound(keys.begin(), keys.end(), t,
+                                     [](double x, const WindKey& k) { return x < k.time; });
+    const size_t i = static_cast<size_t>(it - keys.begin()) - 1;
+    const WindKey& a = keys[i];
+    const WindKey& b = keys[i + 1];
+    if (a.time == t) return {t, a.strength, level(a.direction)};
+    const double u = (t - a.time) / (b.time - a.time);
+    out.strength = a.strength + (b.strength - a.strength) * u;
+    // Along the level arc: the angle between the two directions, turned by u of it.
+    const glm::dvec3 da = level(a.direction), db = level(b.direction);
+    const double angle = pmath::atan2(da.x * db.z - da.z * db.x, glm::dot(da, db));
+    double s, c;
+    pmath::sincos(-u * angle, s, c);
+    out.direction = level({da.x * c - da.z * s, 0.0, da.x * s + da.z * c});
+    return out;
+}
+
+double gust_speed(const WindDesc& wind, const WindKey& at, const glm::dvec3& world) {
+    const double mean = std::max(0.0, at.strength);
+    if (!(mean > 0) || !(wind.gustiness > 0)) return mean;
+    const glm::dvec3 d = at.direction;
+    const double along = world.x * d.x + world.z * d.z, across = world.z * d.x - world.x * d.z;
+    const double front = std::max(1.0, wind.strength);
+    const double g = gust_envelope((at.time - along / front) / wind.gust_period,
+                                   across / wind.turbulence, wind.seed);
+    // Peaks, not waves: the cube keeps most of the time near the calmer mean and brings a gust
+    // up to (1 + gustiness) of it now and then; its mean over time is about the mean's.
+    return mean * (1.0 - 0.5 * wind.gustiness + 1.5 * wind.gustiness * g * g * g);
+}
+
+std::vector<Problem> validate_wind_track(const std::vector<WindKey>& keys,
+                                         const std::string& pointer) {
+    std::vector<Problem> problems;
+    check_times(keys, pointer, problems);
+    for (size_t i = 0; i < keys.size(); ++i) {
+        const glm::dvec3 d = keys[i].direction;
+        const std::string at = key_pointer(pointer, i, "direction");
+        if (!keys[i].own_direction) continue;
+        if (!finite(d) || !(d.x * d.x + d.z * d.z > 1e-12)) {
+            problems.push_back({at, "must be a finite direction with a level part (x or z)"});
+            continue;
+        }
+        if (i > 0 && glm::dot(level(d), level(keys[i - 1].direction)) < -1 + 1e-9)
             problems.push_back({at, "points opposite to key " + std::to_string(i - 1) +
                                         "'s: no single arc joins them; add a key between"});
     }

@@ -1,5 +1,5 @@
 // A camera track: keys in time (position, look-at, up, field of view, distance circles), and the
-// sun's direction in time, interpolated into the camera of any frame as a pure function of time.
+// sun's direction and the wind in time, interpolated into any frame as a pure function of time.
 #pragma once
 
 #include <glm/vec3.hpp>
@@ -94,6 +94,42 @@ glm::dvec3 sun_at(const std::vector<SunKey>& keys, double t);
 // pointing opposite ways (no single arc between them).
 std::vector<Problem> validate_sun_track(const std::vector<SunKey>& keys,
                                         const std::string& pointer);
+
+// The wind's mean speed and direction at a time (the scene's /wind, its gusts aside).
+struct WindKey {
+    double time = 0;
+    double strength = 0;                  // m/s
+    glm::dvec3 direction{1.0, 0.0, 0.0};  // where it blows to, level (y is dropped)
+    bool own_direction = false;  // the key names one (else /wind/direction's, checked there)
+};
+
+// The wind of a scene (/wind): a mean that a track may key, gusts that pass over the land with
+// the wind (gust_envelope, in generators/wind.h), and the seed of both.
+struct WindDesc {
+    bool present = false;
+    double strength = 0;  // m/s, the mean when no track keys it
+    glm::dvec3 direction{1.0, 0.0, 0.0};
+    double gustiness = 0.4;  // 0: steady; 1: gusts from half the mean to twice it
+    double gust_period = 6;  // s between one gust's value and the next
+    double turbulence = 40;  // world units across the wind over which gusts are one
+    uint64_t seed = 1;
+    std::vector<WindKey> track;  // empty: the mean stays
+};
+
+// The wind's mean at t: linear in time between keys (speed) and along the level arc between
+// their directions; clamped at the ends; the key's own values at its time. The direction is
+// unit and level.
+WindKey wind_at(const WindDesc& wind, double t);
+
+// The wind's speed at a place and time, its gusts included: the gust field moves downwind at
+// the wind's mean (/wind/strength, at least 1 m/s), so a gust reaches the trees in its path one
+// after another; across the wind it changes every `turbulence` units.
+double gust_speed(const WindDesc& wind, const WindKey& at, const glm::dvec3& world);
+
+// Fewer than two keys, times not increasing, a non-finite or negative strength, a direction
+// with no level part, consecutive keys pointing opposite ways.
+std::vector<Problem> validate_wind_track(const std::vector<WindKey>& keys,
+                                         const std::string& pointer);
 
 // Frames are numbered from 1, as in Blender: frame N is at (N - 1) / fps seconds.
 double frame_time(int frame, double fps);

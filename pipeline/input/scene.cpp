@@ -299,6 +299,35 @@ void visit_sun_key(SunKey& k, V& v) {
              "Direction towards the sun; between keys, along the great circle (slerp).");
 }
 
+template <class V>
+void visit_wind_key(WindKey& k, V& v) {
+    v.require("time");
+    v.number("time", k.time, {0, 1e6}, "s", "When the wind is this; keys in increasing time.");
+    v.require("strength");
+    v.number("strength", k.strength, {0, 60}, "m/s", "Its mean speed then; linear between keys.");
+    v.vector("direction", k.direction, "",
+             "Where it blows to then (its level part); between keys, along the level arc. "
+             "Absent: /wind/direction.");
+}
+
+template <class V>
+void visit_wind(WindDesc& w, V& v) {
+    v.claim("track");
+    v.number("strength", w.strength, {0, 60}, "m/s",
+             "Mean wind speed: 2-5 a breeze that stirs the leaves, 8-12 a wind that sways limbs "
+             "and trunks; bends grow with its square, divided by the tree's /stiffness.");
+    v.vector("direction", w.direction, "",
+             "Where the wind blows to; its level part (x, z) is used.");
+    v.number("gustiness", w.gustiness, {0, 1}, "",
+             "Gusts over the mean: 0 steady; 1 from half the mean to twice it.");
+    v.number("gust_period", w.gust_period, {0.1, 600}, "s",
+             "Time between one gust's value and the next (the gust field's cell in time).");
+    v.number("turbulence", w.turbulence, {0.01, 1e6}, "world units",
+             "Width across the wind over which gusts are one; downwind they travel at the mean "
+             "speed, reaching one tree after another.");
+    v.seed("seed", w.seed, "Seeds the gusts and, with each tree's number, its limbs' phases.");
+}
+
 const std::pair<ShadowMode, const char*> kShadowModes[] = {
     {ShadowMode::kTransmissive, "transmissive"}, {ShadowMode::kThreshold, "threshold"}};
 const std::pair<GraftalRaster, const char*> kGraftalRasters[] = {
@@ -339,6 +368,13 @@ void visit_scene(SceneDesc& s, V& v) {
                   "Trace shadow rays: trunks, terrain, rocks and the leaf strokes themselves "
                   "cast shadows as brush strokes (IV.4.2). Off: no shadow geometry is built.");
     });
+    v.object("wind",
+             "Wind that bends the trees frame by frame, a pure function of time (absent: still "
+             "air)",
+             [&] {
+                 s.wind.present = true;
+                 visit_wind(s.wind, v);
+             });
     Background& b = s.background;
     v.object("background", "What shows where no stroke covers the canvas", [&] {
         v.color("sky_zenith", b.sky_zenith, "Sky straight up.");
@@ -850,6 +886,20 @@ void parse_tracks(const json& doc, SceneDesc& s, std::vector<Problem>& problems,
                 for (CameraKey& k : s.camera_track.keys) k.up = glm::normalize(k.up);
         }
     }
+    if (const json* list = track_of("wind")) {
+        read_list(doc.at("wind"), "track", "/wind/track", problems, plain,
+                  [&](const json& j, Reader& r, const std::string&) {
+                      WindKey key;
+                      key.direction = s.wind.direction;
+                      key.own_direction = j.is_object() && j.contains("direction");
+                      visit_wind_key(key, r);
+                      s.wind.track.push_back(key);
+                  });
+        if (complete(*list, {"time", "strength"})) {
+            auto found = validate_wind_track(s.wind.track, "/wind/track");
+            problems.insert(problems.end(), found.begin(), found.end());
+        }
+    }
     if (const json* list = track_of("sun")) {
         read_list(doc.at("sun"), "track", "/sun/track", problems, plain,
                   [&](const json&, Reader& r, const std::string&) {
@@ -1228,6 +1278,11 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
         problems.push_back({"/sun/direction", "must be a non-zero direction"});
     else
         s.sun_direction /= sl;
+    const glm::dvec3 wd = s.wind.direction;
+    if (s.wind.present &&
+        !(std::isfinite(wd.x) && std::isfinite(wd.z) && wd.x * wd.x + wd.z * wd.z > 1e-12))
+        problems.push_back(
+            {"/wind/direction", "must be a finite direction with a level part (x or z)"});
     if (s.has_atmosphere && s.atmosphere.far_distance < s.atmosphere.near_distance)
         problems.push_back(
             {"/atmosphere/far", "must be >= near (" + format_number(s.atmosphere.near_distance) +
@@ -1265,6 +1320,13 @@ SceneDesc load_scene(const std::filesystem::path& file, const std::vector<std::s
     return parse_scene(read_input_file(file), file.string(), overrides);
 }
 
+std::string wind_key_catalog(const WindDesc& wind) {
+    Cataloguer c;
+    WindDesc w = wind;
+    c.object("wind", "Wind that bends the trees frame by frame", [&] { visit_wind(w, c); });
+    return c.rows.dump();
+}
+
 std::string scene_reference() {
     Documenter d;
     d.out << "| key | default | range | unit | meaning |\n|---|---|---|---|---|\n";
@@ -1286,6 +1348,13 @@ std::string scene_reference() {
              [&] {
                  SunKey k;
                  visit_sun_key(k, d);
+             });
+    d.object("wind/track/N",
+             "One key of the wind's track, a list of at least two (absent: the wind keeps "
+             "/wind/strength and /wind/direction)",
+             [&] {
+                 WindKey k;
+                 visit_wind_key(k, d);
              });
     d.object("terrain/hills/N", "One hill of the terrain's list", [&] {
         Hill h;

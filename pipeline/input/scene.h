@@ -172,6 +172,7 @@ struct SceneDesc {
     glm::dvec3 sun_direction{-0.5, 0.8, 0.4};  // towards the sun, unit
     std::vector<SunKey> sun_track;             // empty: the sun stays at sun_direction
     bool sun_casts_shadows = false;
+    WindDesc wind;  // absent (present false): still air
     Background background;
     SkyDesc sky;
     bool has_atmosphere = false;
@@ -207,5 +208,9 @@ SceneDesc load_scene(const std::filesystem::path& file,
 
 // Markdown table of every scene key.
 std::string scene_reference();
+
+// The /wind keys with the scene's values, as the studio's controls read them (json_params.h's
+// tree_key_catalog gives a tree's).
+std::string wind_key_catalog(const WindDesc& wind);
 
 }  // namespace pleinair

@@ -81,7 +81,12 @@ std::string mesh_ply(const QuadMesh& mesh, const glm::dvec3& origin) {
                            OpenMesh::IO::Options::Binary | OpenMesh::IO::Options::VertexNormal);
 }
 
-std::string leaves_ply(const LeafParticles& l, const glm::dvec3& origin) {
+std::string leaves_ply(const Tree& t, const WindStiffness& stiffness) {
+    return leaves_ply(t.leaves, t.origin, t.branches, stiffness);
+}
+
+std::string leaves_ply(const LeafParticles& l, const glm::dvec3& origin,
+                       const std::vector<BranchInfo>& limbs, const WindStiffness& stiffness) {
     OutMesh m;
     m.reserve(l.size(), 0, 0);
     // Persistent named properties become PLY vertex properties of the same name.
@@ -92,13 +97,20 @@ std::string leaves_ply(const LeafParticles& l, const glm::dvec3& origin) {
     OpenMesh::VPropHandleT<float> branch_distance, center_distance, label, fade_begin, fade_end;
     // Signed: OpenMesh 9.0's binary PLY writer declares an unsigned int property as "uint" but
     // writes one byte of it, which corrupts every record after it.
-    OpenMesh::VPropHandleT<int> tree_id;
+    OpenMesh::VPropHandleT<int> tree_id, limb, limb_level;
+    OpenMesh::VPropHandleT<float> pivot_x, pivot_y, pivot_z, stiff;
     add(branch_distance, "branch_distance");
     add(center_distance, "center_distance");
     add(label, "label");
     add(tree_id, "tree_id");
     add(fade_begin, "fade_begin");
     add(fade_end, "fade_end");
+    add(limb, "limb");
+    add(limb_level, "limb_level");
+    add(pivot_x, "pivot_x");
+    add(pivot_y, "pivot_y");
+    add(pivot_z, "pivot_z");
+    add(stiff, "stiffness");
     for (size_t i = 0; i < l.size(); ++i) {
         auto v = m.add_vertex(world(l.position[i], origin));
         m.set_normal(v, {l.normal[i].x, l.normal[i].y, l.normal[i].z});
@@ -108,13 +120,24 @@ std::string leaves_ply(const LeafParticles& l, const glm::dvec3& origin) {
         m.property(tree_id, v) = static_cast<int>(l.tree_id[i]);
         m.property(fade_begin, v) = l.fade_begin[i];
         m.property(fade_end, v) = l.fade_end[i];
+        const uint32_t k = i < l.limb.size() ? l.limb[i] : 0;
+        const BranchInfo* b = k < limbs.size() ? &limbs[k] : nullptr;
+        const OpenMesh::Vec3f pivot = world(b ? b->start : glm::vec3(0.0f), origin);
+        m.property(limb, v) = static_cast<int>(k);
+        m.property(limb_level, v) = b ? b->level : 0;
+        m.property(pivot_x, v) = pivot[0];
+        m.property(pivot_y, v) = pivot[1];
+        m.property(pivot_z, v) = pivot[2];
+        m.property(stiff, v) =
+            static_cast<float>(b && b->level > 0 ? stiffness.limbs : stiffness.trunk);
     }
     return write_to_string(m, ".ply",
                            OpenMesh::IO::Options::Binary | OpenMesh::IO::Options::VertexNormal |
                                OpenMesh::IO::Options::Custom);
 }
 
-std::string tree_json(const Tree& t, const std::string& preset_name) {
+std::string tree_json(const Tree& t, const std::string& preset_name,
+                      const WindStiffness& stiffness) {
     using ordered_json = nlohmann::ordered_json;
     auto vec = [](const glm::dvec3& v) { return ordered_json::array({v.x, v.y, v.z}); };
     ordered_json j;
@@ -139,9 +162,12 @@ std::string tree_json(const Tree& t, const std::string& preset_name) {
                             {"end", vec(t.origin + glm::dvec3(b.end))},
                             {"length", b.length},
                             {"base_radius", b.ring_radii.front()},
-                            {"tip_radius", b.ring_radii.back()}});
+                            {"tip_radius", b.ring_radii.back()},
+                            {"stiffness", b.level > 0 ? stiffness.limbs : stiffness.trunk}});
     }
     j["branches"] = std::move(branches);
+    j["stiffness"] = {
+        {"trunk", stiffness.trunk}, {"limbs", stiffness.limbs}, {"leaves", stiffness.leaves}};
     return j.dump(2) + "\n";
 }
 
@@ -149,14 +175,15 @@ namespace {
 
 // Everything is formatted before the first byte is written.
 std::vector<std::pair<std::string, std::string>> tree_files(const Tree& t,
-                                                            const std::string& preset_name) {
+                                                            const std::string& preset_name,
+                                                            const WindStiffness& stiffness) {
     std::vector<std::pair<std::string, std::string>> files = {
         {"control.obj", mesh_obj(t.control, t.origin)},
         {"control.ply", mesh_ply(t.control, t.origin)},
         {"render.obj", mesh_obj(t.render, t.origin)},
         {"render.ply", mesh_ply(t.render, t.origin)},
-        {"leaves.ply", leaves_ply(t.leaves, t.origin)},
-        {"tree.json", tree_json(t, preset_name)},
+        {"leaves.ply", leaves_ply(t, stiffness)},
+        {"tree.json", tree_json(t, preset_name, stiffness)},
     };
     if (!t.lod.quads.empty()) {
         files.emplace_back("lod.obj", mesh_obj(t.lod, t.origin));
@@ -210,9 +237,10 @@ void check_output_folder(const fs::path& dir, const std::string& marker) {
                          "folder, or an earlier output of the same command");
 }
 
-void write_tree(const Tree& t, const std::string& preset_name, const fs::path& dir) {
+void write_tree(const Tree& t, const std::string& preset_name, const fs::path& dir,
+                const WindStiffness& stiffness) {
     check_output_folder(dir, "tree.json");
-    auto files = tree_files(t, preset_name);
+    auto files = tree_files(t, preset_name, stiffness);
     make_parent(dir);
     PartialOutput tmp(dir);
     write_tree_files(files, tmp.path(), dir);
@@ -220,7 +248,7 @@ void write_tree(const Tree& t, const std::string& preset_name, const fs::path& d
 }
 
 void write_family(const std::vector<Tree>& trees, const std::string& preset_name,
-                  uint64_t base_seed, const fs::path& dir) {
+                  uint64_t base_seed, const fs::path& dir, const WindStiffness& stiffness) {
     check_output_folder(dir, "family.json");
     make_parent(dir);
     PartialOutput tmp(dir);
@@ -229,7 +257,8 @@ void write_family(const std::vector<Tree>& trees, const std::string& preset_name
     // its own folder (OpenMesh's own formatting step takes one member at a time).
     tbb::parallel_for(size_t(0), trees.size(), [&](size_t i) {
         const std::string member = member_folder(preset_name, trees[i]);
-        write_tree_files(tree_files(trees[i], preset_name), tmp.path() / member, dir / member);
+        write_tree_files(tree_files(trees[i], preset_name, stiffness), tmp.path() / member,
+                         dir / member);
     });
     nlohmann::ordered_json index;
     index["preset"] = preset_name;

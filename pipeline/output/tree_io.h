@@ -13,20 +13,32 @@ namespace pleinair {
 // The files of one tree, as bytes; world space = tree.origin + tree-local, summed in double.
 std::string mesh_obj(const QuadMesh& mesh, const glm::dvec3& origin);
 std::string mesh_ply(const QuadMesh& mesh, const glm::dvec3& origin);
-std::string leaves_ply(const LeafParticles& leaves, const glm::dvec3& origin);
-std::string tree_json(const Tree& tree, const std::string& preset_name);
+// Besides the thesis's attributes, each particle's wind rig (generators/wind.h) for a Blender
+// or Houdini user to drive the same motion: `limb` (tree.json's branch id it hangs on),
+// `limb_level` (0 trunk, 1 branch, 2 twig: Pivot Painter's hierarchy depth), `pivot_x/y/z` (its
+// limb's base, world: Pivot Painter's per-element pivot) and `stiffness` (its limb's, the
+// preset's /stiffness/trunk or /stiffness/limbs). Limbs' parents, ends and ring centres are in
+// tree.json.
+std::string leaves_ply(const LeafParticles& leaves, const glm::dvec3& origin,
+                       const std::vector<BranchInfo>& limbs = {},
+                       const WindStiffness& stiffness = {});
+std::string leaves_ply(const Tree& tree, const WindStiffness& stiffness = {});
+std::string tree_json(const Tree& tree, const std::string& preset_name,
+                      const WindStiffness& stiffness = {});
 
 // Writes control.{obj,ply}, render.{obj,ply}, lod.{obj,ply} (when built), leaves.ply and
 // tree.json into a temporary folder beside `dir`, renamed to `dir` once every file is written,
 // replacing an earlier tree folder there (PartialOutput::commit): the folder is complete or
 // absent. Throws InputError if `dir` may not be replaced (check_output_folder) and
 // std::runtime_error naming the file that failed; the temporary folder is removed then.
-void write_tree(const Tree& tree, const std::string& preset_name, const std::filesystem::path& dir);
+void write_tree(const Tree& tree, const std::string& preset_name, const std::filesystem::path& dir,
+                const WindStiffness& stiffness = {});
 
 // A family's folder: per member a tree folder `PRESET-III-seed-SEED` and family.json listing
 // them, written into a temporary folder renamed to `dir` when complete, like write_tree.
 void write_family(const std::vector<Tree>& trees, const std::string& preset_name,
-                  uint64_t base_seed, const std::filesystem::path& dir);
+                  uint64_t base_seed, const std::filesystem::path& dir,
+                  const WindStiffness& stiffness = {});
 
 // Throws InputError unless `dir` is absent or a folder that a tree or family output may replace
 // as a whole: an empty one, or one holding `marker` ("tree.json", "family.json"). Anything else

@@ -34,6 +34,11 @@ ShotPlan plan_shot(const SceneDesc& scene, const ShotOptions& options) {
     plan.underpaint = meshes;
     plan.sun_light = plan.shadows && !plan.sun_moves && options.cache_sun_light &&
                      scene.render.shadow_samples == ShadowSamples::kParticle;
+    // Wind that blows at some time, over trees: a mean or a key above zero.
+    const WindDesc& w = scene.wind;
+    plan.wind = w.present && !scene.trees.empty() &&
+                (w.strength > 0 || std::any_of(w.track.begin(), w.track.end(),
+                                               [](const WindKey& k) { return k.strength > 0; }));
     return plan;
 }
 
@@ -212,8 +217,10 @@ bool can_carry(const Shot* from, const Shot& shot) {
     return true;
 }
 
-// Each tree's member's leaf basis, one per member (trees drawn from one member share it).
-std::vector<std::shared_ptr<const LeafBasis>> leaf_bases(const Shot& shot) {
+// Each tree's member's make(first tree of the member), one per member: the trees drawn from
+// one member share it.
+template <class T, class Make>
+std::vector<std::shared_ptr<const T>> per_member(const Shot& shot, Make&& make) {
     const std::vector<BuiltTree>& trees = *shot.trees;
     std::map<const Tree*, size_t> member;
     std::vector<size_t> first;  // per member, its first tree
@@ -223,14 +230,12 @@ std::vector<std::shared_ptr<const LeafBasis>> leaf_bases(const Shot& shot) {
         if (fresh) first.push_back(i);
         of[i] = it->second;
     }
-    std::vector<std::shared_ptr<const LeafBasis>> basis(first.size());
+    std::vector<std::shared_ptr<const T>> made(first.size());
     tbb::parallel_for(size_t{0}, first.size(), [&](size_t m) {
-        const BuiltTree& b = trees[first[m]];
-        basis[m] = std::make_shared<const LeafBasis>(
-            leaf_basis(b.tree(), shot.scene.families[b.family].leaf_shader));
+        made[m] = std::make_shared<const T>(make(trees[first[m]]));
     });
-    std::vector<std::shared_ptr<const LeafBasis>> out(trees.size());
-    for (size_t i = 0; i < trees.size(); ++i) out[i] = basis[of[i]];
+    std::vector<std::shared_ptr<const T>> out(trees.size());
+    for (size_t i = 0; i < trees.size(); ++i) out[i] = made[of[i]];
     return out;
 }
 
@@ -367,7 +372,9 @@ Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> t
     }
     if (shot.scene.render.level_of_detail) {
         PassTimer timer;
-        shot.leaf_basis = leaf_bases(shot);
+        shot.leaf_basis = per_member<LeafBasis>(shot, [&](const BuiltTree& b) {
+            return leaf_basis(b.tree(), shot.scene.families[b.family].leaf_shader);
+        });
         size_t leaves = 0;
         std::set<const LeafBasis*> counted;
         for (const auto& b : shot.leaf_basis)
@@ -376,6 +383,20 @@ Shot build_shot(SceneDesc scene, std::shared_ptr<const std::vector<BuiltTree>> t
                                "each member's leaves' lightness and direction from the crown's "
                                "centre, which every frame's level of detail reads",
                                timer.ms(), std::to_string(leaves) + " leaves"});
+    }
+    if (plan.wind) {
+        PassTimer timer;
+        shot.wind_rigs = per_member<WindRig>(shot, [&](const BuiltTree& b) {
+            return build_wind_rig(b.tree(), plan.bark ? &b.bark() : nullptr);
+        });
+        size_t joints = 0;
+        std::set<const WindRig*> counted;
+        for (const auto& r : shot.wind_rigs)
+            if (counted.insert(r.get()).second) joints += r->center.size();
+        shot.passes.push_back({"wind rigs", true,
+                               "each member's limbs' rings as joints and each particle's joint, "
+                               "which every frame's wind poses",
+                               timer.ms(), std::to_string(joints) + " joints"});
     }
     if (plan.sun_light) {
         PassTimer timer;

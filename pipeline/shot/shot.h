@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "generators/wind.h"
 #include "pipeline/input/scene.h"
 #include "pipeline/shot/built_trees.h"
 #include "pipeline/shot/graftal_instances.h"
@@ -61,6 +62,7 @@ struct ShotPlan {
     bool sun_moves = false;   // a keyed sun: its scene and the light are traced per frame
     bool underpaint = false;  // a visible mesh (terrain, water, rocks): the camera's ray scene
     bool sun_light = false;   // each particle's light kept in the shot once traced
+    bool wind = false;        // a /wind that ever blows: the trees' rigs are built
 };
 
 // What a camera-scene geometry is painted with underneath: a material, or the terrain's (which
@@ -99,6 +101,9 @@ struct Shot {
     // Per tree, its member's leaves as the level of detail reads them (leaf_basis.h), shared by
     // the trees of one member; empty when the scene turns the level of detail off.
     std::vector<std::shared_ptr<const LeafBasis>> leaf_basis;
+    // Per tree, its member's wind rig (generators/wind.h), shared by the trees of one member;
+    // empty in still air (plan.wind false).
+    std::vector<std::shared_ptr<const WindRig>> wind_rigs;
 
     // The graftal-styled families' crowns and materials' surfaces (graftal_stage.h); their
     // leaf and surface strokes are not painted. Graftal sprites' items count on from

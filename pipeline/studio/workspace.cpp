@@ -130,7 +130,7 @@ ChangeLevel change_level(const std::string& pointer, std::string* family) {
     // and its still position (near field) are re-checked at rest (Workspace::rebuild).
     if (under(pointer, "/camera/track")) return ChangeLevel::kScene;
     if (under(pointer, "/camera")) return ChangeLevel::kFrame;
-    for (const char* k : {"/sun", "/sky", "/background", "/atmosphere", "/description"})
+    for (const char* k : {"/sun", "/wind", "/sky", "/background", "/atmosphere", "/description"})
         if (under(pointer, k)) return ChangeLevel::kShot;
     if (under(pointer, "/render")) {
         // The two build settings: bark strokes on every tree, strokes on every surface.
@@ -377,6 +377,8 @@ std::string Workspace::catalog_json() const {
         fams.push_back(fam);
     }
     c["families"] = fams;
+    // The wind's keys, whether the scene has a /wind or not: a change adds one.
+    c["wind"] = json::parse(wind_key_catalog(scene_.wind));
     c["tree_presets"] = preset_names("trees");
     c["shaders"] = preset_names("shaders");
     c["palettes"] = preset_names("palettes");

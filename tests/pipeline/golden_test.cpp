@@ -6,8 +6,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include "pipeline/output/image_io.h"
 #include "pipeline/frame/paint_frame.h"
+#include "pipeline/output/image_io.h"
 #include "test_util.h"
 
 namespace pleinair {
@@ -77,7 +77,9 @@ std::vector<uint8_t> paint_case(const fs::path& dir, int& width, int& height) {
     std::string args = test::read_file(dir / "animate");
     while (!args.empty() && (args.back() == '\n' || args.back() == ' ')) args.pop_back();
     const fs::path out = test::temp_dir("golden-" + dir.filename().string());
-    const std::string shot = dir.filename().string().substr(5);  // shot-NAME
+    // shot-NAME, or shot-NAME@WHEN for another frame of the same shot.
+    const std::string name = dir.filename().string().substr(5);
+    const std::string shot = name.substr(0, name.find('@'));
     const auto r = test::run_pleinair("animate " + shot + " " + args + " -o " +
                                       (out / "f_####.png").string() + " --progress log");
     EXPECT_EQ(r.exit_code, 0) << r.err;

@@ -194,8 +194,9 @@ TEST(Paint, PlanSkipsWhatTheSceneDoesNotNeed) {
     int skipped = 0;
     for (const auto& d : plan.decisions) skipped += !d.ran;
     // bark, tint, atmosphere, aovs, shadows, underpaint, level of detail, graftals, imposters,
-    // sky, reflections, pigment mixing, canvas
-    EXPECT_EQ(skipped, 13);
+    // sky, reflections, pigment mixing, canvas, wind
+    EXPECT_EQ(skipped, 14);
+    EXPECT_FALSE(plan.wind);
     EXPECT_FALSE(plan.imposters);
     // With no tint and no atmosphere the picture changes (they did something before).
     SceneDesc full = parse_scene(scene_text(kCamera, kTrees), "test");

@@ -26,6 +26,8 @@ TEST(Studio, ChangeLevelsFollowTheKeyTables) {
     EXPECT_EQ(change_level("/camera/fov"), ChangeLevel::kFrame);
     EXPECT_EQ(change_level("/camera/track/0/position"), ChangeLevel::kScene);
     EXPECT_EQ(change_level("/sun/direction"), ChangeLevel::kShot);
+    EXPECT_EQ(change_level("/wind/strength"), ChangeLevel::kShot);
+    EXPECT_EQ(change_level("/wind/track/1/strength"), ChangeLevel::kShot);
     EXPECT_EQ(change_level("/sky"), ChangeLevel::kShot);
     EXPECT_EQ(change_level("/render/samples"), ChangeLevel::kShot);
     EXPECT_EQ(change_level("/render/bark_coverage"), ChangeLevel::kScene);
@@ -85,6 +87,15 @@ TEST(Studio, EachLevelPaintsWhatAFreshBuildPaints) {
 
     EXPECT_EQ(ws.set("/sun/direction", "[0.5, 0.6, 0.3]"), ChangeLevel::kShot);
     f = ws.paint(std::nullopt, false);
+    EXPECT_EQ(f.frame.rgba, fresh(ws, false).rgba);
+
+    // Wind added to a scene that had none: the catalogue offers its keys, the shot is rebuilt
+    // with the trees' rigs, and the still (time 0) is painted bent, as render paints it.
+    EXPECT_NE(ws.catalog_json().find("\"/wind/strength\""), std::string::npos);
+    const Frame calm = ws.paint(std::nullopt, false).frame;
+    EXPECT_EQ(ws.set("/wind/strength", "9"), ChangeLevel::kShot);
+    f = ws.paint(std::nullopt, false);
+    EXPECT_NE(f.frame.rgba, calm.rgba);
     EXPECT_EQ(f.frame.rgba, fresh(ws, false).rgba);
 }
 

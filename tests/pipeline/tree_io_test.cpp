@@ -16,13 +16,16 @@ namespace {
 
 TEST(TreeIo, LeafPlyHasEveryAttributeByName) {
     Tree t = generate_tree(test::preset("oak"), 3, {7, {0, 0, 0}, true});
-    test::Ply ply = test::parse_ply(leaves_ply(t.leaves, t.origin));
+    WindStiffness st;
+    st.trunk = 3, st.limbs = 1.5;
+    test::Ply ply = test::parse_ply(leaves_ply(t, st));
     EXPECT_EQ(ply.format, "binary_little_endian");
     ASSERT_EQ(ply.vertex_count, t.leaves.size());
     EXPECT_EQ(ply.vertex_properties,
               (std::vector<std::string>{"x", "y", "z", "nx", "ny", "nz", "branch_distance",
                                         "center_distance", "label", "tree_id", "fade_begin",
-                                        "fade_end"}));
+                                        "fade_end", "limb", "limb_level", "pivot_x", "pivot_y",
+                                        "pivot_z", "stiffness"}));
     for (size_t i = 0; i < t.leaves.size(); i += 97) {
         EXPECT_EQ(ply.columns["x"][i], t.leaves.position[i].x);
         EXPECT_EQ(ply.columns["ny"][i], t.leaves.normal[i].y);
@@ -32,6 +35,12 @@ TEST(TreeIo, LeafPlyHasEveryAttributeByName) {
         EXPECT_EQ(ply.columns["tree_id"][i], 7.0);
         EXPECT_EQ(ply.columns["fade_begin"][i], t.leaves.fade_begin[i]);
         EXPECT_EQ(ply.columns["fade_end"][i], t.leaves.fade_end[i]);
+        // The wind's rig: the limb it hangs on, that limb's depth, base and stiffness.
+        const BranchInfo& b = t.branches[t.leaves.limb[i]];
+        EXPECT_EQ(ply.columns["limb"][i], double(t.leaves.limb[i]));
+        EXPECT_EQ(ply.columns["limb_level"][i], double(b.level));
+        EXPECT_EQ(ply.columns["pivot_y"][i], b.start.y);
+        EXPECT_EQ(ply.columns["stiffness"][i], b.level > 0 ? 1.5 : 3.0);
     }
 }
 

@@ -323,6 +323,8 @@ function buildControls(cat) {
     choiceRow(bark, f.pointer + '/bark_palette', 'palette', '', [''].concat(cat.palettes),
               "The bark's palette (empty: the shader's own).");
   });
+  // The wind: scrub the timeline to watch the trees move (a still shows its time 0).
+  if (cat.wind) keyTable(section('wind', false), cat.wind, '');
 }
 
 function applyCatalog(cat, rebuild) {
