@@ -56,9 +56,9 @@ FrameWind frame_wind(const Shot& shot, double time, const FrameLod& lod) {
         fw.now[i] = pose_tree(b.tree(), rig, st, wind_at_tree(shot, i, time), tiers);
         fw.before[i] = pose_tree(b.tree(), rig, st, wind_at_tree(shot, i, time - frame), tiers);
         fw.next[i] = pose_tree(b.tree(), rig, st, wind_at_tree(shot, i, time + frame), tiers);
-        fw.reach[i] = static_cast<float>(
-            std::max({fw.now[i].reach, fw.before[i].reach, fw.next[i].reach}) *
-            shot.placements[i].scale);
+        fw.reach[i] =
+            static_cast<float>(std::max({fw.now[i].reach, fw.before[i].reach, fw.next[i].reach}) *
+                               shot.placements[i].scale);
     });
     return fw;
 }
