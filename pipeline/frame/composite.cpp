@@ -105,7 +105,10 @@ struct TileLayer {
     static constexpr float kInf = std::numeric_limits<float>::infinity();
 
     // Soft order, in a tile where some sprite moves against another (speed_max > 0).
-    static constexpr int kHeld = 4;
+    // Six: a willow's strands in a gust layer five or more swaying strokes within one another's
+    // window at a pixel, and with four the nearest was settled early, so its swap was made in
+    // one frame (BENCHMARKS.md, "Wind").
+    static constexpr int kHeld = 6;
     struct Held {
         float r, g, b, a, range, speed;
         float light;  // reaching it through the settled strokes and those held settled before it
@@ -596,7 +599,7 @@ StrokeLayer paint_strokes(const Shot& shot, const SpriteSet& set, const TileBins
         float speed_max = 0;
         for (uint32_t idx : bin) speed_max = std::max(speed_max, set.sprites[idx].swap_speed);
         if (rs.order_blend_frames > 0 && speed_max > 0) {
-            // The held strokes, kept per thread: 4 x 32 bytes a pixel.
+            // The held strokes, kept per thread: 6 x 32 bytes a pixel.
             thread_local std::vector<TileLayer::Held> pool;
             pool.resize(TileLayer::kHeld * kTile * kTile);
             layer->make_soft(0.5f * rs.order_blend_frames, speed_max, pool.data());

@@ -22,8 +22,8 @@ using test::run_pleinair;
 
 // A small landscape under a shadow-casting sun, the camera walking past two trees.
 std::string walk_scene(const std::string& track, int width = 96, int height = 64,
-                       const std::string& camera = "") {
-    return R"({"fps": 12,
+                       const std::string& camera = "", const std::string& extra = "") {
+    return R"({"fps": 12, )" + extra + R"(
         "camera": {)" +
            camera + R"("width": )" + std::to_string(width) + R"(, "height": )" +
            std::to_string(height) + R"(, "fov": 50, "track": )" + track + R"(},
@@ -55,6 +55,7 @@ class Animate : public ::testing::Test {
         return run_pleinair("animate " + scene.string() + " -o " + (dir_ / name).string() +
                             "/f_##.png --progress log " + args);
     }
+    void chunks_single_frames_and_a_whole_run(const std::string& text);
     std::string frame(const std::string& name, int f) {
         char buf[16];
         std::snprintf(buf, sizeof buf, "/f_%02d.png", f);
@@ -67,9 +68,22 @@ class Animate : public ::testing::Test {
 const char* kCircles =
     R"("leaf_near": 8, "leaf_far": 30, "trunk_near": 8, "trunk_far": 30, "near_field": 12, )";
 
+// A gusty wind: the trees' poses are functions of time alone (generators/wind.h).
+const char* kWind =
+    R"("wind": {"strength": 9, "direction": [1, 0, 0.3], "gustiness": 0.8, "gust_period": 0.3}, )";
+
 TEST_F(Animate, ChunksSingleFramesAndAWholeRunGiveTheSameBytes) {
+    for (const char* extra : {"", kWind}) {
+        SCOPED_TRACE(extra);
+        chunks_single_frames_and_a_whole_run(walk_scene(kWalk, 96, 64, kCircles, extra));
+    }
+}
+
+void Animate::chunks_single_frames_and_a_whole_run(const std::string& text) {
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
     // With the level of detail on: nothing of it may depend on the frames painted before.
-    const fs::path s = scene(walk_scene(kWalk, 96, 64, kCircles));
+    const fs::path s = scene(text);
     auto whole = animate(s, "whole", "--threads 2");
     ASSERT_EQ(whole.exit_code, 0) << whole.err;
     ASSERT_EQ(animate(s, "chunks", "--frames 1-3 --threads 1").exit_code, 0);

@@ -157,7 +157,9 @@ TEST_F(OneFrame, RenderAndAnimatePaintTheSamePixelsForEveryShippedShot) {
             ASSERT_EQ(a.size(), size_t{kWidth} * kHeight * 3);
             EXPECT_EQ(differing_pixels(a, b), 0u) << "render --frame and animate differ";
         }
-        // --preview halves the size alike in both commands.
+        // --preview halves the size alike in both commands (a size rule: the sanitized build
+        // leaves it to the plain one, as it leaves the first and last frames).
+        if (kSanitized) continue;
         const std::string preview = frame_name(dir, "p_", middle, "png");
         r = run_pleinair("render " + s.name + " --preview --frame " + std::to_string(middle) +
                          " -o " + preview + " --set /camera/width=" + std::to_string(2 * kWidth) +
