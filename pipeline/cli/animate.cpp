@@ -322,7 +322,7 @@ int run_animate(const AnimateCommand& cmd) {
     SceneDesc scene = load_scene(file, cmd.set);
     if (!scene.animated())
         throw InputError(file.string(), "/camera/track",
-                         "the scene has no camera track and no sun track: paint it with "
+                         "the scene has no camera, sun or wind track: paint it with "
                          "`pleinair render`");
     const std::vector<int> frames = frames_to_paint(scene, cmd.frames);
     check_views(scene, frames, file.string());

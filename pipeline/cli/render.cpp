@@ -39,8 +39,9 @@ double frame_time_of(std::optional<double> time, std::optional<int> frame, const
                      const std::string& file) {
     if (time && frame) throw InputError("--time", "", "give --time or --frame, not both");
     if ((time || frame) && !scene.animated())
-        throw InputError(file, "/camera/track",
-                         "--time and --frame need a camera or sun track; the scene is a still");
+        throw InputError(
+            file, "/camera/track",
+            "--time and --frame need a camera, sun or wind track; the scene is a still");
     const FrameRange frames = animation_frames(scene);
     if (frame) {
         if (*frame < frames.first || *frame > frames.last)

@@ -24,13 +24,13 @@ FrameView still_view(const SceneDesc& scene) {
 
 FrameView view_at(const SceneDesc& scene, double t) {
     FrameView v = still_view(scene);
+    v.time = t;  // the sun's and the wind's clock, with or without a camera track
     if (!scene.camera_track.keys.empty()) {
         const CameraKey key = track_at(scene.camera_track, t);
         if (std::string why = track_camera(scene, key, v.camera); !why.empty())
             throw std::runtime_error("the camera track at " + std::to_string(t) + " s: " + why);
         v.circles = circles_of(key, scene.circles);
         v.on_track = true;
-        v.time = t;
         // Central difference over a frame either side (one side at the track's ends).
         const double dt = 1.0 / scene.fps;
         const double ta = std::max(t - dt, scene.camera_track.keys.front().time);
@@ -49,6 +49,8 @@ TimeSpan animation_span(const SceneDesc& scene) {
     if (!cam.empty()) return {cam.front().time, cam.back().time};
     if (!scene.sun_track.empty())
         return {scene.sun_track.front().time, scene.sun_track.back().time};
+    if (!scene.wind.track.empty())
+        return {scene.wind.track.front().time, scene.wind.track.back().time};
     return {};
 }
 

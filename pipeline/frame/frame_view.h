@@ -23,7 +23,8 @@ struct FrameView {
     Camera camera;
     glm::dvec3 sun_direction{0, 1, 0};  // towards the sun, unit
     DistanceCircles circles;            // carried by the camera (IV.6)
-    // On a camera track, at `time` seconds: the level of detail replays the track up to it.
+    // On a camera track: the level of detail replays the track up to `time`, the frame's
+    // seconds (the sun's and the wind's clock in any animated scene; 0 for a still).
     bool on_track = false;
     double time = 0;
     // How far the eye moves in one frame there (zero for a still): strokes whose distances from
@@ -47,7 +48,8 @@ FrameView still_view(const SceneDesc& scene);
 FrameView view_at(const SceneDesc& scene, double t);
 
 // The seconds an animated scene's tracks cover: its camera track's first and last keys', or its
-// sun track's when it has no camera track; {0, 0} for a still.
+// sun track's when it has no camera track, or its wind track's when it has neither; {0, 0} for a
+// still.
 struct TimeSpan {
     double first = 0, last = 0;
 };

@@ -339,8 +339,8 @@ template <class V>
 void visit_scene(SceneDesc& s, V& v) {
     v.text("description", s.description, "One line on what the scene shows.");
     v.number("fps", s.fps, {1e-3, 1000}, "frames/s",
-             "Frames per second of an animated scene (one with a camera or a sun track): frame "
-             "N, counted from 1, is at (N - 1) / fps seconds.");
+             "Frames per second of an animated scene (one with a camera, a sun or a wind track): "
+             "frame N, counted from 1, is at (N - 1) / fps seconds.");
     CameraParams& c = s.camera_params;
     v.object("camera", "The perspective camera", [&] {
         v.vector("position", c.position, "world units", "Where the camera stands.");

@@ -189,8 +189,11 @@ struct SceneDesc {
     std::vector<TreeGroup> groups;
     std::vector<ParticleFileDesc> particles;  // files of particles from other tools
 
-    // A camera or a sun track: frames differ with time.
-    bool animated() const { return !camera_track.keys.empty() || !sun_track.empty(); }
+    // A camera, a sun or a wind track: frames differ with time (a still camera in the wind has
+    // frames too).
+    bool animated() const {
+        return !camera_track.keys.empty() || !sun_track.empty() || !wind.track.empty();
+    }
 };
 
 // pleinair's world: every coordinate a scene places (the camera and its track, trees, rocks,

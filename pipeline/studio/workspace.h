@@ -75,7 +75,7 @@ class Workspace {
     // The overrides in the order first made, each pointer once with its latest value.
     const std::vector<std::pair<std::string, std::string>>& overrides() const { return sets_; }
     std::vector<std::string> override_args() const;
-    // Whether the scene has a camera or sun track, and its frames.
+    // Whether the scene has a camera, sun or wind track, and its frames.
     bool animated() const;
 
     // The command that paints exactly the picture `paint(frame, preview, {}, draft)` gives at

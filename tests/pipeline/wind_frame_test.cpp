@@ -52,6 +52,24 @@ TEST(WindFrame, CalmAirOnTheTrackPaintsWhatStillAirPaints) {
     EXPECT_GT(test::byte_diff(a, b).differ, a.size() / 100);
 }
 
+TEST(WindFrame, AStillCameraInAWindTrackHasFramesThatMove) {
+    // The willow seen from a camera that does not move: the wind's track alone makes the shot.
+    SceneDesc s = willow_gust();
+    s.camera_track.keys.clear();
+    ASSERT_TRUE(s.animated());
+    const FrameRange r = animation_frames(s);
+    EXPECT_EQ(r.first, 1);
+    EXPECT_EQ(r.last, 193);  // 8 s at 24 fps
+    const FrameView v = view_at(s, 2.0);
+    EXPECT_EQ(v.time, 2.0);
+    EXPECT_FALSE(v.on_track);
+    EXPECT_EQ(v.camera.eye, still_view(s).camera.eye);
+    const Shot shot = build_shot(s);
+    const std::vector<uint8_t> a = paint_at(shot, 1.0), b = paint_at(shot, 2.0);
+    EXPECT_GT(test::byte_diff(a, b).differ, a.size() / 200);
+    EXPECT_EQ(paint_at(shot, 2.0), b);
+}
+
 TEST(WindFrame, StrokesMoveNoFartherThanTheReachAndKeepTheirNoise) {
     const Shot shot = build_shot(willow_gust());
     const FrameSettings fs = scene_frame_settings(shot.scene);
