@@ -8,7 +8,7 @@ JOBS ?= $(shell nproc)
 DEPS := build-essential cmake ninja-build libopenmesh-dev libglm-dev libopenimageio-dev \
         openimageio-tools libembree-dev libtbb-dev nlohmann-json3-dev libcli11-dev \
         libgtest-dev libbenchmark-dev libhwy-dev libcairo2-dev pkg-config ffmpeg \
-        libcpp-httplib-dev
+        libcpp-httplib-dev libtinygltf-dev
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 FUZZ_BUILD ?= build-fuzz

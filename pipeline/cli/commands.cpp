@@ -55,6 +55,19 @@ nlohmann::ordered_json mesh_counts(const QuadMesh& m) {
     return {{"vertices", m.positions.size()}, {"faces", m.quads.size()}};
 }
 
+// What a tree folder holds and how tree.glb looks: the Corot shaders and the species' bark, as
+// the family's contact sheet paints them.
+TreeOutput tree_output(const std::string& name, const std::string& preset, const TreeParams& params,
+                       const std::string& format) {
+    TreeOutput out;
+    out.stiffness = params.stiffness;
+    if (!parse_tree_format(format, out.format))
+        throw InputError("--format", "", "\"" + format + "\": expected all, glb or obj-ply");
+    const Family f = sheet_family(name, preset, params);
+    out.look = {f.leaf_shader, f.leaf_palette, f.bark_palette, params.unit};
+    return out;
+}
+
 }  // namespace
 
 int run_tree(const TreeCommand& cmd) {
@@ -85,7 +98,8 @@ int run_tree(const TreeCommand& cmd) {
         auto t1 = std::chrono::steady_clock::now();
         ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
     }
-    if (!cmd.out.empty()) write_tree(tree, name, cmd.out, params.stiffness);
+    if (!cmd.out.empty())
+        write_tree(tree, name, cmd.out, tree_output(name, cmd.preset, params, cmd.format));
     if (cmd.stats) {
         std::sort(ms.begin(), ms.end());
         double median =
@@ -189,7 +203,7 @@ int run_family(const FamilyCommand& cmd) {
     save_preset(cmd.save_preset, params);
     if (cmd.out.empty()) return 0;
     std::vector<Tree> trees = generate_family(params, cmd.seed, cmd.count);
-    write_family(trees, name, cmd.seed, cmd.out, params.stiffness);
+    write_family(trees, name, cmd.seed, cmd.out, tree_output(name, cmd.preset, params, cmd.format));
     std::cout << "wrote " << trees.size() << " " << name << " trees to " << cmd.out << "\n";
     return 0;
 }

@@ -20,6 +20,7 @@ struct TreeCommand {
     std::vector<double> position;  // where the tree stands (x, y, z); empty: origin
     uint32_t id = 0;
     bool lod = true;
+    std::string format = "all";  // tree_io.h's TreeFormat names
 };
 
 struct FamilyCommand {
@@ -32,6 +33,7 @@ struct FamilyCommand {
     std::string style = "strokes";    // the contact sheet's crowns: strokes or a graftal
     std::vector<std::string> set;
     std::string save_preset;
+    std::string format = "all";  // of each member's folder
 };
 
 struct RenderCommand {

@@ -72,8 +72,9 @@ struct Command {
 // The `tree` command's options; returns what runs it once they are parsed.
 Command add_tree(CLI::App& app) {
     auto c = std::make_shared<TreeCommand>();
-    auto* t =
-        app.add_subcommand("tree", "Grow one tree: meshes (OBJ, PLY) and leaf particles (PLY)");
+    auto* t = app.add_subcommand("tree",
+                                 "Grow one tree: meshes (OBJ, PLY), leaf particles (PLY) and the "
+                                 "tree as glTF 2.0 (tree.glb)");
     t->add_option("--preset", c->preset, "Preset name (see `pleinair presets`) or JSON file")
         ->required();
     t->add_option("--seed", c->seed, "Random seed; the same seed gives the same bytes")
@@ -91,6 +92,10 @@ Command add_tree(CLI::App& app) {
         ->check(kWorldCoordinate);
     t->add_option("--id", c->id, "Tree id stored in every particle (seeds the painter's tint)")
         ->check(whole_number(UINT32_MAX));
+    t->add_option("--format", c->format,
+                  "Files in the tree folder besides tree.json: \"all\" (OBJ, PLY and tree.glb), "
+                  "\"glb\" (tree.glb alone) or \"obj-ply\"")
+        ->check(CLI::IsMember({"all", "glb", "obj-ply"}));
     auto no_lod = std::make_shared<bool>(false);
     t->add_flag("--no-lod", *no_lod, "Skip the low-detail mesh");
 
@@ -123,6 +128,10 @@ Command add_family(CLI::App& app) {
                   "description's tufts (a name from presets/graftals or a JSON file)");
     f->add_option("--set", c->set, "Override a preset key: POINTER=VALUE");
     f->add_option("--save-preset", c->save_preset, "Write the fully resolved parameters to FILE");
+    f->add_option("--format", c->format,
+                  "Files in the tree folder besides tree.json: \"all\" (OBJ, PLY and tree.glb), "
+                  "\"glb\" (tree.glb alone) or \"obj-ply\"")
+        ->check(CLI::IsMember({"all", "glb", "obj-ply"}));
 
     return {f, [=] { return run_family(*c); }};
 }

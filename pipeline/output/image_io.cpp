@@ -305,6 +305,27 @@ std::string encode_frame(const Frame& f, const std::string& ext, int jpeg_qualit
     return memory.bytes();
 }
 
+std::string encode_png_rgba8(const std::vector<uint8_t>& rgba, int width, int height) {
+    if (width <= 0 || height <= 0 || rgba.size() != size_t(width) * size_t(height) * 4)
+        throw std::runtime_error("encode_png_rgba8: the pixels do not fill the image");
+    OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::UINT8);
+    spec.alpha_channel = 3;
+    spec.attribute("oiio:ColorSpace", "sRGB");
+    spec.attribute("oiio:UnassociatedAlpha", 1);  // colour is not premultiplied: glTF's rule
+    spec.attribute("Software", "pleinair");
+    spec.attribute("png:compressionLevel", 6);
+    const fs::path name = "texture.png";
+    MemoryFile memory(name);
+    auto out = OIIO::ImageOutput::create(name.string());
+    const bool ok = out && out->open(memory.name(), spec) &&
+                    out->write_image(OIIO::TypeDesc::UINT8, rgba.data()) && out->close() &&
+                    !out->has_error();
+    if (!ok)
+        throw std::runtime_error("cannot encode a texture as PNG: " +
+                                 (out ? out->geterror() : OIIO::geterror()));
+    return memory.bytes();
+}
+
 bool image_has_size(const fs::path& path, int width, int height) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) return false;

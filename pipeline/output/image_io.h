@@ -29,6 +29,10 @@ void write_frame(const std::filesystem::path& path, const Frame& frame);
 // Throws std::runtime_error for a frame with values that are not finite or a failed encode.
 std::string encode_frame(const Frame& frame, const std::string& ext, int jpeg_quality = 90);
 
+// 8-bit RGBA (row by row, top row first, sRGB colour and linear alpha) encoded as PNG in
+// memory, as write_frame encodes (a texture inside a glTF file). Throws std::runtime_error.
+std::string encode_png_rgba8(const std::vector<uint8_t>& rgba, int width, int height);
+
 // Whether `path` is an image OpenImageIO can open whose size is width x height (a frame a
 // resumed run keeps).
 bool image_has_size(const std::filesystem::path& path, int width, int height);

@@ -176,19 +176,24 @@ namespace {
 // Everything is formatted before the first byte is written.
 std::vector<std::pair<std::string, std::string>> tree_files(const Tree& t,
                                                             const std::string& preset_name,
-                                                            const WindStiffness& stiffness) {
-    std::vector<std::pair<std::string, std::string>> files = {
-        {"control.obj", mesh_obj(t.control, t.origin)},
-        {"control.ply", mesh_ply(t.control, t.origin)},
-        {"render.obj", mesh_obj(t.render, t.origin)},
-        {"render.ply", mesh_ply(t.render, t.origin)},
-        {"leaves.ply", leaves_ply(t, stiffness)},
-        {"tree.json", tree_json(t, preset_name, stiffness)},
-    };
-    if (!t.lod.quads.empty()) {
-        files.emplace_back("lod.obj", mesh_obj(t.lod, t.origin));
-        files.emplace_back("lod.ply", mesh_ply(t.lod, t.origin));
+                                                            const TreeOutput& out) {
+    std::vector<std::pair<std::string, std::string>> files;
+    if (out.format != TreeFormat::kGlb) {
+        files = {
+            {"control.obj", mesh_obj(t.control, t.origin)},
+            {"control.ply", mesh_ply(t.control, t.origin)},
+            {"render.obj", mesh_obj(t.render, t.origin)},
+            {"render.ply", mesh_ply(t.render, t.origin)},
+            {"leaves.ply", leaves_ply(t, out.stiffness)},
+        };
+        if (!t.lod.quads.empty()) {
+            files.emplace_back("lod.obj", mesh_obj(t.lod, t.origin));
+            files.emplace_back("lod.ply", mesh_ply(t.lod, t.origin));
+        }
     }
+    if (out.format != TreeFormat::kObjPly)
+        files.emplace_back("tree.glb", tree_glb(t, preset_name, out.stiffness, out.look));
+    files.emplace_back("tree.json", tree_json(t, preset_name, out.stiffness));
     return files;
 }
 
@@ -222,6 +227,13 @@ std::string member_folder(const std::string& preset_name, const Tree& t) {
 
 }  // namespace
 
+bool parse_tree_format(const std::string& name, TreeFormat& format) {
+    if (name == "all") return format = TreeFormat::kAll, true;
+    if (name == "glb") return format = TreeFormat::kGlb, true;
+    if (name == "obj-ply") return format = TreeFormat::kObjPly, true;
+    return false;
+}
+
 void check_output_folder(const fs::path& dir, const std::string& marker) {
     std::error_code ec;
     auto status = fs::symlink_status(dir, ec);
@@ -238,9 +250,9 @@ void check_output_folder(const fs::path& dir, const std::string& marker) {
 }
 
 void write_tree(const Tree& t, const std::string& preset_name, const fs::path& dir,
-                const WindStiffness& stiffness) {
+                const TreeOutput& out) {
     check_output_folder(dir, "tree.json");
-    auto files = tree_files(t, preset_name, stiffness);
+    auto files = tree_files(t, preset_name, out);
     make_parent(dir);
     PartialOutput tmp(dir);
     write_tree_files(files, tmp.path(), dir);
@@ -248,7 +260,7 @@ void write_tree(const Tree& t, const std::string& preset_name, const fs::path& d
 }
 
 void write_family(const std::vector<Tree>& trees, const std::string& preset_name,
-                  uint64_t base_seed, const fs::path& dir, const WindStiffness& stiffness) {
+                  uint64_t base_seed, const fs::path& dir, const TreeOutput& out) {
     check_output_folder(dir, "family.json");
     make_parent(dir);
     PartialOutput tmp(dir);
@@ -257,8 +269,7 @@ void write_family(const std::vector<Tree>& trees, const std::string& preset_name
     // its own folder (OpenMesh's own formatting step takes one member at a time).
     tbb::parallel_for(size_t(0), trees.size(), [&](size_t i) {
         const std::string member = member_folder(preset_name, trees[i]);
-        write_tree_files(tree_files(trees[i], preset_name, stiffness), tmp.path() / member,
-                         dir / member);
+        write_tree_files(tree_files(trees[i], preset_name, out), tmp.path() / member, dir / member);
     });
     nlohmann::ordered_json index;
     index["preset"] = preset_name;

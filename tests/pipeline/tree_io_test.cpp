@@ -114,7 +114,7 @@ TEST(TreeIo, WriteTreeWritesEveryFileAndNoTemporaries) {
     std::sort(names.begin(), names.end());
     EXPECT_EQ(names,
               (std::vector<std::string>{"control.obj", "control.ply", "leaves.ply", "lod.obj",
-                                        "lod.ply", "render.obj", "render.ply", "tree.json"}));
+                                        "lod.ply", "render.obj", "render.ply", "tree.glb", "tree.json"}));
     std::filesystem::remove_all(dir);
 }
 
