@@ -17,7 +17,7 @@ FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := tree_preset shader_preset palette scene set_value studio_request particle_file graftal \
                 imposter
 
-.PHONY: all deps build render test test-sanitize test-farm test-studio fuzz bench format reference golden gallery clean
+.PHONY: all deps build render test test-sanitize test-farm test-studio test-clients fuzz bench format reference golden gallery clean
 
 all: build
 
@@ -62,6 +62,16 @@ test-studio: build
 	$(call install_missing,$(STUDIO_DEPS))
 	/usr/bin/python3 tests/studio/test_studio.py --pleinair $(BUILD)/pleinair \
 	    --artifacts $(BUILD)/studio-artifacts
+
+# pleinair's glTF files against real clients (installs Blender, numpy for its glTF importer, and
+# Node.js with npm if missing; the Khronos validator comes from npm into $(BUILD)/clients):
+# tests/clients/run.sh.
+CLIENT_DEPS := blender python3-numpy
+test-clients: build
+	$(call install_missing,$(CLIENT_DEPS))
+	@command -v npm >/dev/null || { $(SUDO) apt-get update -qq && \
+	    DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends nodejs npm; }
+	tests/clients/run.sh $(abspath $(BUILD))/pleinair $(abspath $(BUILD))/clients
 
 # The same tests built with AddressSanitizer and UndefinedBehaviorSanitizer, but for two that
 # repeat, shot after shipped shot, paths every other test runs: that the benches measure the
