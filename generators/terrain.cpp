@@ -50,6 +50,10 @@ NoiseOffset noise_offset(uint64_t seed) {
 
 double height_at(const TerrainParams& p, NoiseOffset o, double x, double z) {
     double h = p.base_height;
+    if (p.height_map) {
+        const double w = p.max.x - p.min.x, d = p.max.y - p.min.y;
+        h += p.height_map->at(w > 0 ? (x - p.min.x) / w : 0.0, d > 0 ? (z - p.min.y) / d : 0.0);
+    }
     for (const Hill& hill : p.hills) {
         if (!(hill.radius > 0)) continue;
         double d = pmath::hypot(x - hill.center.x, z - hill.center.y) / hill.radius;

@@ -5,9 +5,11 @@
 #include <cstdint>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "generators/height_map.h"
 #include "generators/quad_mesh.h"
 
 namespace pleinair {
@@ -44,9 +46,13 @@ struct TerrainParams {
     double noise_amplitude = 0.4;   // peak-to-peak, world units
     double noise_frequency = 0.04;  // per world unit
     int noise_octaves = 3;
+    // Heights from a map over [min, max] (a survey, a sculpted ground), under the hills and
+    // noise; null: none. Shared: scenes are copied, the map is not.
+    std::shared_ptr<const HeightMap> height_map;
 };
 
-// Height at (x, z): base + each hill's cosine bump + noise. Pure in (params, seed).
+// Height at (x, z): base + the height map + each hill's cosine bump + noise. Pure in (params,
+// seed).
 double terrain_height(const TerrainParams& p, uint64_t seed, double x, double z);
 
 // The terrain as a grid surface facing +y. Rejects nothing: a degenerate extent or resolution

@@ -141,8 +141,13 @@ Command add_render(CLI::App& app) {
     auto c = std::make_shared<RenderCommand>();
     CLI::App* r = app.add_subcommand("render", "Paint a scene into an image (PNG, TIFF or EXR)");
     r->add_option("scene", c->scene, "Scene name (presets/scenes) or JSON file")->required();
-    r->add_option("-o,--out", c->out, "Image to write: .png (8-bit sRGB), .tif, .exr (linear)")
-        ->required();
+    r->add_option("-o,--out", c->out,
+                  "Image to write: .png (8-bit sRGB), .tif, .exr (linear); needed unless an "
+                  "--export option is given");
+    r->add_option("--export-height-map", c->export_height_map,
+                  "Write the terrain's heights at its grid's resolution: .png or .tif (16-bit, "
+                  "the lowest height 0 and the highest 65535, both printed) or .exr (float "
+                  "metres); /terrain/height_map reads it back");
     r->add_flag("--explain", c->explain,
                 "Print the frame's plan: passes run or skipped and why, times, counts");
     r->add_flag("--aovs", c->aovs, "Add depth, object id, alpha, lightness channels (EXR)");

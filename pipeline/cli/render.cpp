@@ -1,5 +1,7 @@
 // The render command: scene file in, painted image out, with the shot's and the frame's plan
 // on request.
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -11,6 +13,7 @@
 #include "pipeline/input/error.h"
 #include "pipeline/input/limits.h"
 #include "pipeline/input/presets.h"
+#include "pipeline/output/height_map_writer.h"
 #include "pipeline/output/image_io.h"
 
 namespace pleinair {
@@ -102,7 +105,45 @@ void check_job_memory(const SceneDesc& scene, bool aovs, const std::string& out,
     throw InputError(file, "/camera/width", line + how_to_raise("memory_mb"));
 }
 
+namespace {
+
+// --export-height-map: the terrain's grid as a height map, its range printed for whoever reads
+// it back (/terrain/height_map/low and high).
+void export_height_map(const SceneDesc& scene, const std::string& source, const fs::path& path) {
+    if (!scene.terrain.present)
+        throw InputError(source, "/terrain", "--export-height-map needs a terrain to write");
+    const GridSurface grid = generate_terrain(scene.terrain.params, scene.terrain.seed);
+    double lo = 1e300, hi = -1e300;
+    for (const glm::vec3& p : grid.positions)
+        lo = std::min<double>(lo, p.y), hi = std::max<double>(hi, p.y);
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const bool exr = ext == ".exr";
+    if (fs::path parent = path.parent_path(); !parent.empty()) fs::create_directories(parent);
+    write_height_map(path, grid, lo, hi);
+    std::printf(
+        "wrote %s (%dx%d): /terrain/height_map {\"file\": \"%s\", \"low\": %.9g, "
+        "\"high\": %.9g} over min [%.9g, %.9g], max [%.9g, %.9g], resolution %d\n",
+        path.string().c_str(), grid.nu, grid.nv, path.filename().string().c_str(), exr ? 0.0 : lo,
+        exr ? 1.0 : hi, scene.terrain.params.min.x, scene.terrain.params.min.y,
+        scene.terrain.params.max.x, scene.terrain.params.max.y, grid.nu);
+}
+
+}  // namespace
+
 int run_render(const RenderCommand& cmd) {
+    if (cmd.out.empty() && cmd.export_height_map.empty())
+        throw InputError("-o", "", "give an image to paint (-o IMAGE) or an --export option");
+    if (!cmd.export_height_map.empty() && !is_image_path(cmd.export_height_map))
+        throw InputError("--export-height-map", "",
+                         "expected a path ending in .png, .tif, .tiff or .exr, got \"" +
+                             cmd.export_height_map + "\"");
+    if (cmd.out.empty()) {
+        fs::path file = resolve_preset("scenes", cmd.scene, "SCENE");
+        const SceneDesc scene = load_scene(file, cmd.set);
+        export_height_map(scene, file.string(), cmd.export_height_map);
+        return 0;
+    }
     if (!is_image_path(cmd.out))
         throw InputError(
             "-o", "",
@@ -112,6 +153,8 @@ int run_render(const RenderCommand& cmd) {
     PassTimer total;
     fs::path file = resolve_preset("scenes", cmd.scene, "SCENE");
     SceneDesc scene = load_scene(file, cmd.set);
+    if (!cmd.export_height_map.empty())
+        export_height_map(scene, file.string(), cmd.export_height_map);
     if (cmd.preview) halve_for_preview(scene, file.string());
     if (cmd.draft) apply_draft(scene.render, cmd.set);
     check_job_memory(scene, cmd.aovs, cmd.out, 1, file.string());

@@ -8,6 +8,7 @@
 
 #include "generators/rng.h"
 #include "pipeline/input/graftal_io.h"
+#include "pipeline/input/height_map_io.h"
 #include "pipeline/input/imposter_io.h"
 #include "pipeline/input/json_visitors.h"
 #include "pipeline/input/limits.h"
@@ -53,6 +54,24 @@ void visit_terrain(T& t, V& v) {
     v.number("noise_frequency", p.noise_frequency, {0, 1e3}, "1/world unit",
              "Frequency of that noise.");
     v.integer("noise_octaves", p.noise_octaves, {1, 8}, "Octaves of that noise.");
+    v.object("height_map",
+             "Heights from an image over [min, max] (a survey's, a sculpted ground's), under the "
+             "hills and noise (set noise_amplitude 0 for the map alone); absent: none",
+             [&] {
+                 HeightMapDesc& m = t.height_map;
+                 m.present = true;
+                 v.require("file");
+                 v.text("file", m.file,
+                        "One-channel image, relative to the scene's folder: 16-bit PNG or TIFF, or "
+                        "float EXR or TIFF. Column 0 lies at min x, row 0 at min z (Blender's top "
+                        "view of a glTF scene); its first and last samples at the edges. Set "
+                        "resolution to its width to keep every sample.");
+                 v.number("low", m.low, {-1e9, 1e9}, "world units",
+                          "Height of a 16-bit sample 0, or of a float sample 0.");
+                 v.number("high", m.high, {-1e9, 1e9}, "world units",
+                          "Height of a 16-bit sample 65535, or of a float sample 1: with low 0 and "
+                          "high 1 a float map's values are heights as they stand.");
+             });
     v.text("material", t.material_name, "Material of the ground's strokes (/materials).");
     v.text("second_material", t.second_material_name,
            "Material where the noise below is over material_threshold (grass and dirt on one "
@@ -824,6 +843,19 @@ void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
         });
 }
 
+// The terrain's height map read now, before anything stands on the ground.
+void load_height_map(const std::string& source, SceneDesc& s, std::vector<Problem>& problems) {
+    const HeightMapDesc& m = s.terrain.height_map;
+    if (!s.terrain.present || !m.present) return;
+    fs::path file(m.file);
+    if (file.is_relative() && source.ends_with(".json"))
+        file = fs::path(source).parent_path() / file;
+    load_into(problems, source, "/terrain/height_map/file", [&] {
+        s.terrain.params.height_map = std::make_shared<const HeightMap>(
+            read_height_map(file, m.low, m.high, source, "/terrain/height_map/file"));
+    });
+}
+
 // Each particle file read and turned into strokes now, so a broken file is refused with the
 // scene, before any work (the strokes are shared by every copy of the scene).
 void load_particle_files(const std::string& source, SceneDesc& s, std::vector<Problem>& problems) {
@@ -1296,6 +1328,7 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
     parse_groups(doc, s, problems, plain);
     check_world_range(s, problems);
     // The files last, and only for a scene otherwise sound: a broken scene is not kept waiting.
+    if (problems.empty()) load_height_map(source, s, problems);
     if (problems.empty()) load_particle_files(source, s, problems);
     mark_overrides(problems, overridden);
     if (!problems.empty()) throw InputError(source, problems);

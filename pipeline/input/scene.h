@@ -89,8 +89,16 @@ struct MaterialRegion {
 
 // The ground: a heightfield turned into strokes. Its material comes from noise (grass and
 // dirt on one hillside) and from a mask (the bank just above the water).
+// /terrain/height_map: heights from an image (pipeline/input/height_map_io.h).
+struct HeightMapDesc {
+    bool present = false;
+    std::string file;  // relative to the scene's folder
+    double low = 0, high = 1;
+};
+
 struct TerrainDesc {
     bool present = false;
+    HeightMapDesc height_map;  // read into params.height_map with the scene
     uint64_t seed = 1;
     TerrainParams params;
     SurfaceStrokeParams strokes;

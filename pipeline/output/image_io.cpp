@@ -183,6 +183,38 @@ std::vector<uint8_t> frame_srgb8(const Frame& f) {
     return out;
 }
 
+namespace {
+
+// Encodes with the writer the target's name picks, then writes the bytes whole or not at all.
+void write_image_atomic(const fs::path& path, const OIIO::ImageSpec& spec, OIIO::TypeDesc in_type,
+                        const void* data) {
+    // OpenImageIO's writers cannot be trusted with the disk: the PNG writer notes a failed write
+    // and reports success (a full disk gave exit 0 and a truncated image), the TIFF writer's
+    // close "cannot fail" though it writes the directory then, and 2.4's TIFF writer corrupts
+    // its file when given an IOProxy. So the writer writes into a file in memory, opened by name
+    // like any file, and write_file_atomic writes its bytes, checking every write, the fsync
+    // and the close. The bytes are those the writer gives a file on disk.
+    MemoryFile memory(path);
+    auto out = OIIO::ImageOutput::create(path.string());  // the format from the target's name
+    bool ok =
+        out && out->open(memory.name(), spec) && out->write_image(in_type, data) && out->close();
+    // A writer that noted a failed write but returned true (the PNG writer, past a file-size
+    // limit: the memory file is a file too) is a failure all the same.
+    ok = ok && !out->has_error();
+    if (!ok) {
+        std::string err = out ? out->geterror() : OIIO::geterror();
+        // One line: a writer may note a failure per block written.
+        if (const size_t eol = err.find('\n'); eol != std::string::npos) err.resize(eol);
+        while (!err.empty() && err.back() == ' ') err.pop_back();
+        throw std::runtime_error("cannot write " + path.string() + ": " +
+                                 (err.empty() ? "OpenImageIO cannot encode it" : err));
+    }
+    out.reset();
+    write_file_atomic(path, memory.bytes());
+}
+
+}  // namespace
+
 void write_frame(const fs::path& path, const Frame& f) {
     const std::string ext = lower_ext(path);
     if (!is_image_path(path))
@@ -255,29 +287,7 @@ void write_frame(const fs::path& path, const Frame& f) {
     // (EXR keeps it as an empty capDate, TIFF drops it) keeps the same inputs the same bytes.
     spec.attribute("DateTime", "");
 
-    // OpenImageIO's writers cannot be trusted with the disk: the PNG writer notes a failed write
-    // and reports success (a full disk gave exit 0 and a truncated image), the TIFF writer's
-    // close "cannot fail" though it writes the directory then, and 2.4's TIFF writer corrupts
-    // its file when given an IOProxy. So the writer writes into a file in memory, opened by name
-    // like any file, and write_file_atomic writes its bytes, checking every write, the fsync
-    // and the close. The bytes are those the writer gives a file on disk.
-    MemoryFile memory(path);
-    auto out = OIIO::ImageOutput::create(path.string());  // the format from the target's name
-    bool ok =
-        out && out->open(memory.name(), spec) && out->write_image(in_type, data) && out->close();
-    // A writer that noted a failed write but returned true (the PNG writer, past a file-size
-    // limit: the memory file is a file too) is a failure all the same.
-    ok = ok && !out->has_error();
-    if (!ok) {
-        std::string err = out ? out->geterror() : OIIO::geterror();
-        // One line: a writer may note a failure per block written.
-        if (const size_t eol = err.find('\n'); eol != std::string::npos) err.resize(eol);
-        while (!err.empty() && err.back() == ' ') err.pop_back();
-        throw std::runtime_error("cannot write " + path.string() + ": " +
-                                 (err.empty() ? "OpenImageIO cannot encode it" : err));
-    }
-    out.reset();
-    write_file_atomic(path, memory.bytes());
+    write_image_atomic(path, spec, in_type, data);
 }
 
 std::string encode_frame(const Frame& f, const std::string& ext, int jpeg_quality) {
@@ -303,6 +313,48 @@ std::string encode_frame(const Frame& f, const std::string& ext, int jpeg_qualit
         throw std::runtime_error("cannot encode the frame as " + ext + ": " + err);
     }
     return memory.bytes();
+}
+
+void write_channel_image(const fs::path& path, const std::vector<float>& values, int width,
+                         int height) {
+    const std::string ext = lower_ext(path);
+    if (!is_image_path(path))
+        throw InputError("-o", "",
+                         "cannot write \"" + path.string() +
+                             "\": the extension must be .png, .tif, .tiff or .exr");
+    if (width < 1 || height < 1 || values.size() != size_t(width) * size_t(height))
+        throw std::runtime_error("write_channel_image: the values do not fill the image");
+    for (float v : values)
+        if (!std::isfinite(v))
+            throw std::runtime_error("the image for " + path.string() +
+                                     " holds values that are not finite; not written");
+    std::vector<uint16_t> u16;
+    OIIO::ImageSpec spec;
+    const void* data = values.data();
+    OIIO::TypeDesc in_type = OIIO::TypeDesc::FLOAT;
+    if (ext == ".exr") {
+        spec = OIIO::ImageSpec(width, height, 1, OIIO::TypeDesc::FLOAT);
+        spec.attribute("compression", "zip");
+    } else {
+        spec = OIIO::ImageSpec(width, height, 1, OIIO::TypeDesc::UINT16);
+        u16.resize(values.size());
+        for (size_t i = 0; i < values.size(); ++i)
+            u16[i] =
+                static_cast<uint16_t>(std::lround(65535.0f * std::clamp(values[i], 0.0f, 1.0f)));
+        data = u16.data();
+        in_type = OIIO::TypeDesc::UINT16;
+        if (ext != ".png") spec.attribute("compression", "zip");
+    }
+    // Data, not colour nor coverage: OpenImageIO names a lone channel "A" otherwise.
+    spec.channelnames = {"Y"};
+    spec.alpha_channel = -1;
+    // Exif's "uncalibrated" colour space, which data is. It also keeps OpenImageIO 2.4's TIFF
+    // writer from failing on an Exif directory with nothing in it ("failed
+    // TIFFWriteCustomDirectory() of the Exif data"), as it does for a spec without a colour space.
+    spec.attribute("Exif:ColorSpace", 65535);
+    spec.attribute("Software", "pleinair");
+    spec.attribute("DateTime", "");
+    write_image_atomic(path, spec, in_type, data);
 }
 
 std::string encode_png_rgba8(const std::vector<uint8_t>& rgba, int width, int height) {

@@ -29,6 +29,11 @@ void write_frame(const std::filesystem::path& path, const Frame& frame);
 // Throws std::runtime_error for a frame with values that are not finite or a failed encode.
 std::string encode_frame(const Frame& frame, const std::string& ext, int jpeg_quality = 90);
 
+// One channel of data, not colour (a height map): 16-bit in PNG and TIFF (values 0..1 to
+// 0..65535, clamped), 32-bit float in EXR (as given). Written as write_frame writes.
+void write_channel_image(const std::filesystem::path& path, const std::vector<float>& values,
+                         int width, int height);
+
 // 8-bit RGBA (row by row, top row first, sRGB colour and linear alpha) encoded as PNG in
 // memory, as write_frame encodes (a texture inside a glTF file). Throws std::runtime_error.
 std::string encode_png_rgba8(const std::vector<uint8_t>& rgba, int width, int height);

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "pipeline/frame/paint_frame.h"
+#include "pipeline/output/height_map_writer.h"
 #include "pipeline/output/image_io.h"
 #include "test_util.h"
 
@@ -63,6 +64,44 @@ TEST(GoldenImages, TheGateSeesARecolouredStroke) {
     EXPECT_LT(std::sqrt(sq / good.size()), 1.0) << "the RMSE alone would pass it";
     EXPECT_GT(worst_block(good, recoloured, w, frame.height), 16.0);
     EXPECT_EQ(worst_block(good, good, w, frame.height), 0.0);
+}
+
+// The height map round trip (issue 29): the small Mortefontaine's noise terrain written as a
+// 16-bit height map at its grid's resolution, then read back in place of the noise (hills and
+// noise off), paints the same picture within the gate: water, strokes, trees and all stand on
+// the same ground, to the map's 1/65535 of the height range between grid points.
+TEST(GoldenImages, AHeightMapWrittenFromANoiseTerrainPaintsThatTerrain) {
+    const fs::path scene =
+        test::source_dir() / "tests" / "golden" / "mortefontaine-small" / "scene.json";
+    const SceneDesc noise = load_scene(scene);
+    ASSERT_TRUE(noise.terrain.present);
+    const GridSurface grid = generate_terrain(noise.terrain.params, noise.terrain.seed);
+    double lo = 1e300, hi = -1e300;
+    for (const glm::vec3& p : grid.positions)
+        lo = std::min<double>(lo, p.y), hi = std::max<double>(hi, p.y);
+    const fs::path dir = test::temp_dir("height-map-round-trip");
+    write_height_map(dir / "heights.png", grid, lo, hi);
+    char map[512];
+    std::snprintf(map, sizeof map,
+                  "/terrain/height_map={\"file\": \"%s\", \"low\": %.17g, \"high\": %.17g}",
+                  (dir / "heights.png").string().c_str(), lo, hi);
+    const SceneDesc mapped = load_scene(
+        scene, {map, "/terrain/noise_amplitude=0", "/terrain/hills=[]", "/terrain/base_height=0"});
+    ASSERT_TRUE(mapped.terrain.params.height_map);
+    EXPECT_EQ(mapped.terrain.params.height_map->width, grid.nu);
+    const Frame a = paint_still(noise), b = paint_still(mapped);
+    const std::vector<uint8_t> pa = frame_srgb8(a), pb = frame_srgb8(b);
+    ASSERT_EQ(pa.size(), pb.size());
+    double sq = 0;
+    for (size_t i = 0; i < pa.size(); ++i) sq += std::pow(int(pa[i]) - int(pb[i]), 2);
+    const double rmse = std::sqrt(sq / pa.size());
+    const double block = worst_block(pa, pb, a.width, a.height);
+    EXPECT_LE(rmse, 1.0);
+    EXPECT_LE(block, 16.0);
+    RecordProperty("rmse", std::to_string(rmse));
+    RecordProperty("worst_block", std::to_string(block));
+    std::printf("height map round trip: RMSE %.3f, worst 8x8 block %.2f levels\n", rmse, block);
+    fs::remove_all(dir);
 }
 
 // A case's painted image in 8-bit sRGB: a scene painted as a still, or a frame of a shipped shot
