@@ -175,4 +175,42 @@ void emit_mesh_strokes(const QuadMesh& mesh, const SurfaceStrokeParams& p, uint6
     }
 }
 
+void emit_triangle_strokes(const QuadMesh& mesh, const SurfaceStrokeParams& p, double density,
+                           uint64_t seed, uint64_t surface_key, SurfaceParticles& out) {
+    if (!(density > 0)) return;
+    // Counts first: the labels are spread over the whole mesh's strokes.
+    std::vector<uint32_t> count(mesh.quads.size());
+    size_t total = 0;
+    for (size_t f = 0; f < mesh.quads.size(); ++f) {
+        const glm::uvec4& q = mesh.quads[f];
+        const glm::dvec3 a(mesh.positions[q[0]]), b(mesh.positions[q[1]]), c(mesh.positions[q[2]]);
+        const double expected = 0.5 * glm::length(glm::cross(b - a, c - a)) * density;
+        Rng rng = make_rng(seed, Purpose::kSurface, surface_key, f, 0, 0);
+        const double whole = std::floor(std::min(expected, 1e6));
+        count[f] = static_cast<uint32_t>(whole) + (rand1(rng) < expected - whole ? 1u : 0u);
+        total += count[f];
+    }
+    Labeller label(total);
+    out.reserve(out.size() + total);
+    for (size_t f = 0; f < mesh.quads.size(); ++f) {
+        if (count[f] == 0) continue;
+        const glm::uvec4& q = mesh.quads[f];
+        const glm::vec3 &a = mesh.positions[q[0]], &b = mesh.positions[q[1]],
+                        &c = mesh.positions[q[2]];
+        const glm::vec3 cr = glm::cross(b - a, c - a);
+        const float len = glm::length(cr);
+        const glm::vec3 n = len > 0.0f && std::isfinite(len) ? cr / len : glm::vec3(0, 1, 0);
+        Rng rng = make_rng(seed, Purpose::kSurface, surface_key, f, 1, 0);
+        for (uint32_t k = 0; k < count[f]; ++k) {
+            // Uniform on the triangle: the square root folds the unit square onto it.
+            const double r1 = std::sqrt(rand1(rng)), r2 = rand1(rng);
+            const glm::vec3 pos = a * static_cast<float>(1 - r1) +
+                                  b * static_cast<float>(r1 * (1 - r2)) +
+                                  c * static_cast<float>(r1 * r2);
+            emit_one(rng, p, pos, n, {static_cast<float>(r1), static_cast<float>(r2)}, label(),
+                     out);
+        }
+    }
+}
+
 }  // namespace pleinair

@@ -122,4 +122,12 @@ void emit_cell_strokes(const std::vector<glm::ivec2>& cells, double cell,
 void emit_mesh_strokes(const QuadMesh& mesh, const SurfaceStrokeParams& params, uint64_t seed,
                        uint64_t surface_key, SurfaceParticles& out);
 
+// Over a triangle mesh (quads whose last corner repeats the third, as glTF surfaces are read):
+// `density` strokes per square world unit on average, each triangle's count its area times the
+// density, rounded down, plus one with the chance of the remainder, so large and small
+// triangles are covered alike. Uniform over each triangle; streams keyed by (seed,
+// surface_key, triangle).
+void emit_triangle_strokes(const QuadMesh& mesh, const SurfaceStrokeParams& params, double density,
+                           uint64_t seed, uint64_t surface_key, SurfaceParticles& out);
+
 }  // namespace pleinair

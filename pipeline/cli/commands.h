@@ -106,6 +106,15 @@ int run_bench_look(const BenchCommand& cmd);
 int run_bench_trees(const BenchCommand& cmd);
 int run_studio(const StudioCommand& cmd);
 
+// `camera SCENE`: one JSON line per frame with the camera and where --point positions land.
+struct CameraCommand {
+    std::string scene;
+    std::string frames;          // "A-B" or "A-BxSTEP"; empty: every frame of the track
+    std::vector<double> points;  // x, y, z of each --point
+    std::vector<std::string> set;
+};
+int run_camera(const CameraCommand& cmd);
+
 struct SceneDesc;
 // The time of the frame a command paints of `scene`: `time` or `frame` (not both; InputError
 // past the track, or on a still), else an animated scene's first frame, else 0. One rule for

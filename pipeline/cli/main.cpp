@@ -313,6 +313,22 @@ Command add_studio(CLI::App& app) {
             }};
 }
 
+// The `camera` command's options; returns what runs it once they are parsed.
+Command add_camera(CLI::App& app) {
+    auto c = std::make_shared<CameraCommand>();
+    CLI::App* k = app.add_subcommand(
+        "camera",
+        "Print the camera at each frame as JSON lines (eye, forward, up, focal length in pixels) "
+        "and where world points land in its image (x right, y down, in pixels; depth)");
+    k->add_option("scene", c->scene, "Scene name (presets/scenes) or JSON file")->required();
+    k->add_option("--frames", c->frames, "Frames: A-B or A-BxSTEP (default: the whole track)");
+    k->add_option("--point", c->points, "A world point x,y,z to project (repeatable)")
+        ->delimiter(',')
+        ->check(kWorldCoordinate);
+    k->add_option("--set", c->set, "Override a scene key: POINTER=VALUE");
+    return {k, [=] { return run_camera(*c); }};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -338,7 +354,7 @@ int main(int argc, char** argv) {
             if (std::string why = set_limit(v); !why.empty()) throw CLI::ValidationError(why);
         });
     const Command commands[] = {add_tree(app),  add_family(app),  add_render(app), add_animate(app),
-                                add_bench(app), add_presets(app), add_studio(app)};
+                                add_bench(app), add_presets(app), add_studio(app), add_camera(app)};
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "generators/rng.h"
+#include "pipeline/input/gltf_import.h"
 #include "pipeline/input/graftal_io.h"
 #include "pipeline/input/height_map_io.h"
 #include "pipeline/input/imposter_io.h"
@@ -176,6 +177,26 @@ void visit_rock(RockDesc& r, V& v) {
     v.integer("subdivision_levels", r.params.subdivision_levels, {0, 5},
               "Catmull-Clark levels of the rock mesh (6 x 4^levels faces).");
     v.text("material", r.material_name, "Material of its strokes.");
+}
+
+template <class V>
+void visit_mesh_file(MeshFileDesc& m, V& v) {
+    v.require("file");
+    v.text("file", m.file,
+           "A glTF 2.0 file (.glb or .gltf), relative to the scene's folder: its triangles, in "
+           "metres with y up as glTF has them, each node's transform applied.");
+    v.text("nodes", m.nodes,
+           "Names of the mesh nodes to paint, comma-separated; empty: every mesh node of the "
+           "file.");
+    v.text("material", m.material_name, "Material of their strokes (/materials).");
+    v.vector("position", m.position, "world units", "Where the file's origin goes.");
+    v.number("scale", m.scale, {1e-6, 1e6}, "", "World units per file unit.");
+    v.seed("seed", m.seed, "Seeds the strokes' places.");
+    v.number("density", m.density, {0, 1e6}, "1/world unit^2",
+             "Strokes per square world unit (before /build/surface_density); 0: two per square "
+             "of the material's sprite_size.");
+    v.number("displacement", m.displacement, {0, 1e3}, "world units",
+             "How far a stroke stands off the surface, up or down along its normal.");
 }
 
 const std::pair<UpAxis, const char*> kUpAxes[] = {{UpAxis::kY, "y"}, {UpAxis::kZ, "z"}};
@@ -379,6 +400,23 @@ void visit_scene(SceneDesc& s, V& v) {
                   "The camera moves at one speed along the whole track's path, from the first "
                   "key's time to the last's: interior keys are passed through, not at their "
                   "times, and only the first key's ease_out and the last's ease_in apply.");
+        v.object("gltf",
+                 "The camera and its animation from a glTF file (a shot laid out in Blender and "
+                 "exported with its camera): instead of position, look_at, up, fov and track",
+                 [&] {
+                     GltfCameraDesc& g = s.camera_gltf;
+                     g.present = true;
+                     v.require("file");
+                     v.text("file", g.file,
+                            "A .glb or .gltf file, relative to the scene's folder. Frame 1 is its "
+                            "first animation sample; width over height must be its camera's "
+                            "aspect ratio.");
+                     v.text("camera", g.camera,
+                            "Name of the camera's node; empty: the first node with a camera.");
+                     v.number("focus_distance", g.focus_distance, {1e-3, 1e6}, "world units",
+                              "How far ahead the camera looks: the depth where strokes keep "
+                              "their size (glTF cameras carry none).");
+                 });
     });
     v.object("sun", "The one light (IV.4.1)", [&] {
         v.claim("track");
@@ -809,6 +847,14 @@ void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
                   s.rocks.push_back(rock);
               });
 
+    read_list(doc, "meshes", "/meshes", problems, plain,
+              [&](const json&, Reader& r, const std::string& ptr) {
+                  MeshFileDesc m;
+                  visit_mesh_file(m, r);
+                  m.material = material(m.material_name, ptr + "/material");
+                  s.meshes.push_back(m);
+              });
+
     read_list(
         doc, "particles", "/particles", problems, plain,
         [&](const json&, Reader& r, const std::string& ptr) {
@@ -841,6 +887,50 @@ void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
             names("normal", p.normal, 3), names("color", p.color, 3);
             s.particles.push_back(p);
         });
+}
+
+// The glTF files read now: the meshes' triangles, and the camera's track.
+void load_gltf_files(const std::string& source, SceneDesc& s, std::vector<Problem>& problems) {
+    auto near = [&](const std::string& name) {
+        fs::path file(name);
+        if (file.is_relative() && source.ends_with(".json"))
+            file = fs::path(source).parent_path() / file;
+        return file;
+    };
+    for (size_t i = 0; i < s.meshes.size(); ++i) {
+        MeshFileDesc& m = s.meshes[i];
+        const std::string ptr = "/meshes/" + std::to_string(i) + "/file";
+        load_into(problems, source, ptr, [&] {
+            const auto doc = load_gltf(near(m.file), source, ptr);
+            std::vector<std::string> nodes;
+            for (const std::string& n : split_names(m.nodes))
+                if (!n.empty()) nodes.push_back(n);
+            m.mesh = std::make_shared<const QuadMesh>(
+                gltf_triangles(*doc, nodes, m.position, m.scale, source, ptr));
+        });
+    }
+    const GltfCameraDesc& g = s.camera_gltf;
+    if (!g.present) return;
+    const std::string ptr = "/camera/gltf/file";
+    load_into(problems, source, ptr, [&] {
+        const auto doc = load_gltf(near(g.file), source, ptr);
+        const double aspect = double(s.camera_params.width) / double(s.camera_params.height);
+        CameraTrack track =
+            gltf_camera_track(*doc, g.camera, g.focus_distance, aspect, s.fps, source, ptr);
+        if (track.keys.size() == 1) {
+            // A camera that does not move is a still.
+            const CameraKey& k = track.keys[0];
+            s.camera_params.position = k.position, s.camera_params.look_at = k.look_at;
+            s.camera_params.up = k.up, s.camera_params.fov = k.fov;
+            return;
+        }
+        for (CameraKey& k : track.keys) {
+            k.leaf_near = k.leaf_far = k.trunk_near = k.trunk_far = k.near_field = 0;
+        }
+        auto found = validate_track(track, ptr);
+        if (!found.empty()) throw InputError(source, found);
+        s.camera_track = std::move(track);
+    });
 }
 
 // The terrain's height map read now, before anything stands on the ground.
@@ -902,6 +992,8 @@ void parse_tracks(const json& doc, SceneDesc& s, std::vector<Problem>& problems,
         }
         return true;
     };
+    if (s.camera_gltf.present && track_of("camera"))
+        problems.push_back({"/camera/track", "a camera from /camera/gltf brings its own track"});
     if (const json* list = track_of("camera")) {
         read_list(doc.at("camera"), "track", "/camera/track", problems, plain,
                   [&](const json&, Reader& r, const std::string&) {
@@ -1277,7 +1369,8 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
     Reader reader(doc, problems, plain);
     reader.check_ranges();
     visit_scene(s, reader);
-    for (const char* key : {"families", "trees", "materials", "rocks", "groups", "particles"})
+    for (const char* key :
+         {"families", "trees", "materials", "rocks", "meshes", "groups", "particles"})
         reader.claim(key);
     reader.finish();
     parse_tracks(doc, s, problems, plain);
@@ -1329,6 +1422,7 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
     check_world_range(s, problems);
     // The files last, and only for a scene otherwise sound: a broken scene is not kept waiting.
     if (problems.empty()) load_height_map(source, s, problems);
+    if (problems.empty()) load_gltf_files(source, s, problems);
     if (problems.empty()) load_particle_files(source, s, problems);
     mark_overrides(problems, overridden);
     if (!problems.empty()) throw InputError(source, problems);
@@ -1407,6 +1501,13 @@ std::string scene_reference() {
         visit_rock(r, d);
         visit_strokes(r.strokes, d);
     });
+    d.object("meshes/N",
+             "Surfaces from a glTF file, painted with a material's strokes; they cast and "
+             "receive shadows and hide what lies behind them, as rocks do",
+             [&] {
+                 MeshFileDesc m;
+                 visit_mesh_file(m, d);
+             });
     d.object("particles/N",
              "A file of particles made by another tool, painted as strokes with a material "
              "(they cast and receive the sun's shadows and never fade with distance)",

@@ -136,6 +136,29 @@ struct RockDesc {
     uint32_t material = 0;
 };
 
+// Surfaces from a glTF file (/meshes): the triangles of some of its mesh nodes, painted with a
+// material's strokes; they cast and receive shadows and hide what lies behind them, as rocks.
+struct MeshFileDesc {
+    std::string file;   // relative to the scene's folder
+    std::string nodes;  // node names, comma-separated; empty: every mesh node
+    glm::dvec3 position{0.0};
+    double scale = 1;
+    uint64_t seed = 1;
+    double density = 0;  // strokes per square world unit; 0: 2 per stroke's square
+    double displacement = 0.05;
+    std::string material_name = "rock";
+    uint32_t material = 0;
+    std::shared_ptr<const QuadMesh> mesh;  // world; read with the scene
+};
+
+// /camera/gltf: the camera track from a camera node of a glTF file (a shot laid out in Blender).
+struct GltfCameraDesc {
+    bool present = false;
+    std::string file;
+    std::string camera;  // node name; empty: the first camera
+    double focus_distance = 10;
+};
+
 // Trees scattered over the terrain (Poisson disk), a weighted mix of families.
 struct TreeGroup {
     ScatterParams params;  // weights: one per entry of `families`
@@ -175,8 +198,9 @@ struct SceneDesc {
     double fps = 24;  // frame N of an animated scene is at (N - 1) / fps seconds
     CameraParams camera_params;
     Camera camera;
-    CameraTrack camera_track;  // keys empty: a still, seen from camera_params
-    DistanceCircles circles;   // the camera's; a track's keys override them circle by circle
+    CameraTrack camera_track;    // keys empty: a still, seen from camera_params
+    GltfCameraDesc camera_gltf;  // read into camera_track (or camera_params) with the scene
+    DistanceCircles circles;     // the camera's; a track's keys override them circle by circle
     glm::dvec3 sun_direction{-0.5, 0.8, 0.4};  // towards the sun, unit
     std::vector<SunKey> sun_track;             // empty: the sun stays at sun_direction
     bool sun_casts_shadows = false;
@@ -194,6 +218,7 @@ struct SceneDesc {
     TerrainDesc terrain;
     WaterDesc water;
     std::vector<RockDesc> rocks;
+    std::vector<MeshFileDesc> meshes;  // glTF surfaces
     std::vector<TreeGroup> groups;
     std::vector<ParticleFileDesc> particles;  // files of particles from other tools
 

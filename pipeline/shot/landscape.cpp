@@ -16,7 +16,8 @@ namespace pleinair {
 
 namespace {
 
-constexpr uint64_t kTerrainKey = 1, kWaterKey = 2, kNearKey = 3, kRockKey = 100;
+constexpr uint64_t kTerrainKey = 1, kWaterKey = 2, kNearKey = 3, kRockKey = 100,
+                   kMeshKey = 1ull << 32;
 
 // Near-field strokes are this much smaller than the terrain's own, and a cell of their grid
 // (which holds as many as a section of the terrain) half as wide as a terrain stroke.
@@ -218,6 +219,7 @@ void build_surfaces(const SceneDesc& s, BuiltLandscape& out) {
     for (size_t i = 0; i < s.rocks.size(); ++i) {
         const RockDesc& r = s.rocks[i];
         out.rocks.push_back(generate_rock(r.params, r.seed, r.position));
+        out.rock_material.push_back(r.material);
         SurfaceStrokeParams rp =
             strokes_for(r.strokes, s.materials[r.material], r.material, density, size);
         out.chunks.emplace_back();
@@ -226,11 +228,35 @@ void build_surfaces(const SceneDesc& s, BuiltLandscape& out) {
     }
 }
 
+// The glTF surfaces (/meshes), with or without a terrain: each a rock-like mesh and one chunk
+// of strokes, as many per area whatever its triangles' sizes.
+void add_meshes(const SceneDesc& s, BuiltLandscape& out) {
+    const float density = std::max(s.build.surface_density, 1e-6f);
+    for (size_t i = 0; i < s.meshes.size(); ++i) {
+        const MeshFileDesc& m = s.meshes[i];
+        if (!m.mesh) continue;
+        out.rocks.push_back(*m.mesh);
+        out.rock_material.push_back(m.material);
+        const Material& mat = s.materials[m.material];
+        SurfaceStrokeParams p;
+        p.material = m.material;
+        p.detail_threshold = mat.surface.detail_threshold;
+        p.displacement_height = m.displacement;
+        const double w = std::max<double>(mat.shader.sprite_size, 1e-3);
+        const double per_area = (m.density > 0 ? m.density : 2.0 / (w * w)) * density;
+        out.chunks.emplace_back();
+        // Fewer or more strokes cover the same area: each grows or shrinks by the square root.
+        out.chunk_size.push_back(1.0f / std::sqrt(density));
+        emit_triangle_strokes(*m.mesh, p, per_area, m.seed, kMeshKey + i, out.chunks.back());
+    }
+}
+
 }  // namespace
 
 BuiltLandscape build_landscape(const SceneDesc& s) {
     BuiltLandscape out;
     build_surfaces(s, out);
+    add_meshes(s, out);
     add_imported(s, out);
     return out;
 }

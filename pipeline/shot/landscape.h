@@ -14,9 +14,10 @@ namespace pleinair {
 
 struct BuiltLandscape {
     bool has_terrain = false, has_water = false;
-    QuadMesh terrain_mesh;        // world
-    QuadMesh water_mesh;          // world, flat at the water level
-    std::vector<QuadMesh> rocks;  // world
+    QuadMesh terrain_mesh;                // world
+    QuadMesh water_mesh;                  // world, flat at the water level
+    std::vector<QuadMesh> rocks;          // world: the scene's rocks, then its glTF meshes
+    std::vector<uint32_t> rock_material;  // each one's material
     // The strokes in chunks (a band of sections of one surface each, in order): emitted in
     // parallel and painted chunk by chunk, never copied into one array. material: index into
     // SceneDesc::materials.

@@ -52,7 +52,7 @@ std::unique_ptr<RayScene> build_view_scene(const Shot& shot, std::vector<ViewSur
             surfaces.push_back({false, shot.materials.surface(scene.water.material)});
     for (size_t i = 0; i < land.rocks.size(); ++i)
         rays->add_mesh(land.rocks[i]),
-            surfaces.push_back({false, shot.materials.surface(scene.rocks[i].material)});
+            surfaces.push_back({false, shot.materials.surface(land.rock_material[i])});
     const std::vector<BuiltTree>& trees = *shot.trees;
     for (size_t i = 0; i < trees.size(); ++i)
         rays->add_instance(shot.limb_mesh[i], shot.placements[i].linear(),

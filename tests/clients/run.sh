@@ -32,4 +32,22 @@ for preset in oak willow; do
         grep -E "^(ok|FAIL|[0-9]+ failed)|Error|Traceback" | sed "s/^/  $preset: /"
     test "${PIPESTATUS[0]}" -eq 0
 done
+echo "== Blender lays out a scene, pleinair paints it"
+scene="$work/out/blender-scene"
+mkdir -p "$scene"
+blender -b --factory-startup --python-exit-code 1 -P "$here/blender_scene.py" -- \
+    "$scene/valley.glb" "$scene/points.json" 2>&1 | grep -E "^exported|Error|Traceback"
+test "${PIPESTATUS[0]}" -eq 0
+cp "$here/blender_scene.json" "$scene/scene.json"
+(cd "$work" && node validate.mjs "$scene/valley.glb")
+points=()
+while read -r p; do points+=(--point "$p"); done < <(/usr/bin/python3 -c "
+import json
+for p in json.load(open('$scene/points.json'))['points']: print(','.join(map(repr, p)))")
+"$pleinair" camera "$scene/scene.json" "${points[@]}" >"$scene/camera.jsonl"
+/usr/bin/python3 "$here/match_camera.py" "$scene/points.json" "$scene/camera.jsonl"
+"$pleinair" animate "$scene/scene.json" --frames 1-48x47 -o "$scene/f_####.png" --progress log \
+    >/dev/null
+test -s "$scene/f_0001.png" && test -s "$scene/f_0048.png"
+echo "  painted frames 1 and 48 of the Blender scene: $scene"
 echo "test-clients: all passed"
