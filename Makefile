@@ -15,7 +15,7 @@ FUZZ_BUILD ?= build-fuzz
 # Seconds each fuzz target runs in `make fuzz` (CI: 45 s each, to keep its run under an hour).
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := tree_preset shader_preset palette scene set_value studio_request particle_file graftal \
-                imposter
+                imposter gltf
 
 .PHONY: all deps build render test test-sanitize test-farm test-studio test-clients fuzz bench format reference golden gallery clean
 

@@ -40,14 +40,17 @@ struct RenderCommand {
     std::string scene;              // name in presets/scenes or a JSON file
     std::string out;                // image path: .png, .tif, .exr; empty with an export alone
     std::string export_height_map;  // the terrain's heights as an image
-    bool explain = false;           // print the frame's plan, pass times and counts
-    bool progress = false;          // report each stage and the paint's percent on stderr
-    bool aovs = false;              // EXR depth, object id, alpha and lightness channels
-    std::vector<std::string> set;   // "POINTER=VALUE" overrides of the scene
-    std::optional<double> time;     // seconds into an animated scene
-    std::optional<int> frame;       // or a frame of it (from 1, at the scene's fps)
-    bool preview = false;           // half the resolution, as animate --preview
-    bool draft = false;             // the draft's lighter settings under the --set ones
+    std::string export_glb;         // the scene as glTF
+    std::string export_instancing = "gpu";
+    bool export_low_detail = false;
+    bool explain = false;          // print the frame's plan, pass times and counts
+    bool progress = false;         // report each stage and the paint's percent on stderr
+    bool aovs = false;             // EXR depth, object id, alpha and lightness channels
+    std::vector<std::string> set;  // "POINTER=VALUE" overrides of the scene
+    std::optional<double> time;    // seconds into an animated scene
+    std::optional<int> frame;      // or a frame of it (from 1, at the scene's fps)
+    bool preview = false;          // half the resolution, as animate --preview
+    bool draft = false;            // the draft's lighter settings under the --set ones
 };
 
 struct AnimateCommand {

@@ -144,6 +144,17 @@ Command add_render(CLI::App& app) {
     r->add_option("-o,--out", c->out,
                   "Image to write: .png (8-bit sRGB), .tif, .exr (linear); needed unless an "
                   "--export option is given");
+    r->add_option("--export", c->export_glb,
+                  "Write the scene as glTF 2.0 (.glb): terrain, water, rocks and meshes, every "
+                  "tree as an instance of its grown member, the sun, and the camera with its "
+                  "track as an animation");
+    r->add_option("--export-instancing", c->export_instancing,
+                  "How trees of one member share its mesh in --export: \"gpu\" "
+                  "(EXT_mesh_gpu_instancing, the default) or \"nodes\" (a node per tree, which "
+                  "every client reads, Blender 3.4 among them)")
+        ->check(CLI::IsMember({"gpu", "nodes"}));
+    r->add_flag("--export-low-detail", c->export_low_detail,
+                "Trees in --export at their low-detail level alone (about a quarter of the size)");
     r->add_option("--export-height-map", c->export_height_map,
                   "Write the terrain's heights at its grid's resolution: .png or .tif (16-bit, "
                   "the lowest height 0 and the highest 65535, both printed) or .exr (float "

@@ -13,8 +13,10 @@
 #include "pipeline/input/error.h"
 #include "pipeline/input/limits.h"
 #include "pipeline/input/presets.h"
+#include "pipeline/output/gltf_scene.h"
 #include "pipeline/output/height_map_writer.h"
 #include "pipeline/output/image_io.h"
+#include "pipeline/output/write_file.h"
 
 namespace pleinair {
 
@@ -129,10 +131,30 @@ void export_height_map(const SceneDesc& scene, const std::string& source, const 
         scene.terrain.params.max.x, scene.terrain.params.max.y, grid.nu);
 }
 
+// --export: the scene as glTF, written whole or not at all.
+void export_scene(const SceneDesc& scene, const RenderCommand& cmd) {
+    SceneExport options;
+    if (!parse_instancing(cmd.export_instancing, options.instancing))
+        throw InputError("--export-instancing", "", "expected gpu or nodes");
+    options.low_detail = cmd.export_low_detail;
+    const BuiltLandscape land = build_landscape(scene);
+    const std::vector<BuiltTree> trees = build_trees(scene, false);
+    const std::string bytes = scene_glb(scene, land, trees, options);
+    const fs::path path(cmd.export_glb);
+    if (fs::path parent = path.parent_path(); !parent.empty()) fs::create_directories(parent);
+    write_file_atomic(path, bytes);
+    std::printf("wrote %s (%.1f MB): %zu trees from %zu surfaces' worth of meshes\n",
+                path.string().c_str(), double(bytes.size()) / 1e6, trees.size(),
+                land.rocks.size() + (land.has_terrain ? 1 : 0) + (land.has_water ? 1 : 0));
+}
+
 }  // namespace
 
 int run_render(const RenderCommand& cmd) {
-    if (cmd.out.empty() && cmd.export_height_map.empty())
+    if (!cmd.export_glb.empty() && fs::path(cmd.export_glb).extension() != ".glb")
+        throw InputError("--export", "",
+                         "expected a path ending in .glb, got \"" + cmd.export_glb + "\"");
+    if (cmd.out.empty() && cmd.export_height_map.empty() && cmd.export_glb.empty())
         throw InputError("-o", "", "give an image to paint (-o IMAGE) or an --export option");
     if (!cmd.export_height_map.empty() && !is_image_path(cmd.export_height_map))
         throw InputError("--export-height-map", "",
@@ -141,7 +163,9 @@ int run_render(const RenderCommand& cmd) {
     if (cmd.out.empty()) {
         fs::path file = resolve_preset("scenes", cmd.scene, "SCENE");
         const SceneDesc scene = load_scene(file, cmd.set);
-        export_height_map(scene, file.string(), cmd.export_height_map);
+        if (!cmd.export_height_map.empty())
+            export_height_map(scene, file.string(), cmd.export_height_map);
+        if (!cmd.export_glb.empty()) export_scene(scene, cmd);
         return 0;
     }
     if (!is_image_path(cmd.out))
@@ -155,6 +179,7 @@ int run_render(const RenderCommand& cmd) {
     SceneDesc scene = load_scene(file, cmd.set);
     if (!cmd.export_height_map.empty())
         export_height_map(scene, file.string(), cmd.export_height_map);
+    if (!cmd.export_glb.empty()) export_scene(scene, cmd);
     if (cmd.preview) halve_for_preview(scene, file.string());
     if (cmd.draft) apply_draft(scene.render, cmd.set);
     check_job_memory(scene, cmd.aovs, cmd.out, 1, file.string());

@@ -19,6 +19,13 @@ struct GltfDocument;
 std::shared_ptr<const GltfDocument> load_gltf(const std::filesystem::path& path,
                                               const std::string& source,
                                               const std::string& pointer);
+// The same from bytes in memory, named `name` in errors. Buffers a .gltf names by a relative
+// URI are read from `base` (as load_gltf reads them beside the file); with `base` empty no
+// file is read, and such a buffer is refused (the fuzz target).
+std::shared_ptr<const GltfDocument> parse_gltf(const std::string& bytes, const std::string& name,
+                                               const std::filesystem::path& base,
+                                               const std::string& source,
+                                               const std::string& pointer);
 
 // The triangles of the mesh nodes named in `nodes` (all mesh nodes of the default scene when
 // empty), in world space: each node's transform down the hierarchy, then `scale` and

@@ -55,10 +55,11 @@ int GltfBuilder::add_positions(const std::vector<glm::vec3>& v) {
     return a;
 }
 
-int GltfBuilder::add_vec3(const std::vector<glm::vec3>& v) {
+int GltfBuilder::add_vec3(const std::vector<glm::vec3>& v, bool vertex) {
     static_assert(sizeof(glm::vec3) == 12);
-    return add_accessor(add_view(v.data(), v.size() * 12, TINYGLTF_TARGET_ARRAY_BUFFER),
-                        TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, v.size());
+    return add_accessor(
+        add_view(v.data(), v.size() * 12, vertex ? TINYGLTF_TARGET_ARRAY_BUFFER : 0),
+        TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, v.size());
 }
 
 int GltfBuilder::add_vec2(const std::vector<glm::vec2>& v) {
@@ -67,14 +68,15 @@ int GltfBuilder::add_vec2(const std::vector<glm::vec2>& v) {
                         TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, v.size());
 }
 
-int GltfBuilder::add_vec4(const std::vector<glm::vec4>& v) {
+int GltfBuilder::add_vec4(const std::vector<glm::vec4>& v, bool vertex) {
     static_assert(sizeof(glm::vec4) == 16);
-    return add_accessor(add_view(v.data(), v.size() * 16, TINYGLTF_TARGET_ARRAY_BUFFER),
-                        TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, v.size());
+    return add_accessor(
+        add_view(v.data(), v.size() * 16, vertex ? TINYGLTF_TARGET_ARRAY_BUFFER : 0),
+        TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, v.size());
 }
 
-int GltfBuilder::add_scalar(const std::vector<float>& v) {
-    return add_accessor(add_view(v.data(), v.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
+int GltfBuilder::add_scalar(const std::vector<float>& v, bool vertex) {
+    return add_accessor(add_view(v.data(), v.size() * 4, vertex ? TINYGLTF_TARGET_ARRAY_BUFFER : 0),
                         TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, v.size());
 }
 

@@ -22,12 +22,14 @@ class GltfBuilder {
 
     tinygltf::Model& model() { return model_; }
 
-    int add_positions(const std::vector<glm::vec3>& v);  // VEC3 float with min/max
-    int add_vec3(const std::vector<glm::vec3>& v);       // normals, custom vectors
-    int add_vec2(const std::vector<glm::vec2>& v);       // texture coordinates
-    int add_vec4(const std::vector<glm::vec4>& v);       // tangents, colours
-    int add_scalar(const std::vector<float>& v);         // custom attributes
-    int add_indices(const std::vector<uint32_t>& v);     // triangle corners, uint32
+    // `vertex`: the view holds vertex attributes (target ARRAY_BUFFER); animation samplers and
+    // instancing attributes are not vertex data, and the validator refuses a view used as both.
+    int add_positions(const std::vector<glm::vec3>& v);                 // VEC3 float with min/max
+    int add_vec3(const std::vector<glm::vec3>& v, bool vertex = true);  // normals, vectors
+    int add_vec2(const std::vector<glm::vec2>& v);                      // texture coordinates
+    int add_vec4(const std::vector<glm::vec4>& v, bool vertex = true);  // colours, rotations
+    int add_scalar(const std::vector<float>& v, bool vertex = true);    // custom attributes
+    int add_indices(const std::vector<uint32_t>& v);                    // triangle corners, uint32
     // An image stored in the buffer (a GLB carries its textures inside).
     int add_image(const std::string& bytes, const std::string& mime_type, const std::string& name);
 

@@ -280,94 +280,131 @@ tinygltf::Primitive surface_primitive(GltfBuilder& g, const GltfSurface& s, int 
     return prim;
 }
 
+}  // namespace
+
 // Bark: the palette's middle colour, rough. Leaves: the atlas under an alpha mask, both sides.
-void add_materials(GltfBuilder& g, const TreeLook& look) {
+TreeMaterials add_tree_materials(GltfBuilder& g, const TreeLook& look, const std::string& prefix) {
     tinygltf::Model& m = g.model();
+    TreeMaterials out;
     tinygltf::Material bark;
-    bark.name = "bark";
+    bark.name = prefix + "bark";
     const Color b = palette_lookup(look.bark_palette, 0.45f);  // linear, as glTF's factors are
     bark.pbrMetallicRoughness.baseColorFactor = {b.x, b.y, b.z, 1.0};
     bark.pbrMetallicRoughness.metallicFactor = 0.0;
     bark.pbrMetallicRoughness.roughnessFactor = 0.9;
+    out.bark = static_cast<int>(m.materials.size());
     m.materials.push_back(bark);
 
     const int image = g.add_image(encode_png_rgba8(leaf_texture(look), 4 * 128, 4 * 128),
-                                  "image/png", "leaf_strokes");
+                                  "image/png", prefix + "leaf_strokes");
     tinygltf::Sampler sampler;
     sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
     sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
     sampler.wrapS = sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
-    m.samplers.push_back(sampler);
     tinygltf::Texture tex;
     tex.source = image;
-    tex.sampler = 0;
-    m.textures.push_back(tex);
+    tex.sampler = static_cast<int>(m.samplers.size());
+    m.samplers.push_back(sampler);
     tinygltf::Material leaves;
-    leaves.name = "leaves";
-    leaves.pbrMetallicRoughness.baseColorTexture.index = 0;
+    leaves.name = prefix + "leaves";
+    leaves.pbrMetallicRoughness.baseColorTexture.index = static_cast<int>(m.textures.size());
+    m.textures.push_back(tex);
     leaves.pbrMetallicRoughness.metallicFactor = 0.0;
     leaves.pbrMetallicRoughness.roughnessFactor = 0.8;
     leaves.alphaMode = "MASK";
     leaves.alphaCutoff = 0.5;
     leaves.doubleSided = true;
+    out.leaves = static_cast<int>(m.materials.size());
     m.materials.push_back(leaves);
+    return out;
 }
 
-// One level of detail as a mesh of two primitives (bark, leaves) and a node holding it.
+namespace {
+
+// One level of detail as a mesh of two primitives (bark, leaves); -1 when it has neither.
 int add_level(GltfBuilder& g, const std::string& name, const GltfSurface& bark,
-              const GltfSurface& cards, const Tree& tree, const WindStiffness& stiffness) {
+              const GltfSurface& cards, const Tree& tree, const WindStiffness& stiffness,
+              TreeMaterials mat) {
     tinygltf::Mesh mesh;
     mesh.name = name;
-    if (!bark.indices.empty()) mesh.primitives.push_back(surface_primitive(g, bark, 0));
+    if (!bark.indices.empty()) mesh.primitives.push_back(surface_primitive(g, bark, mat.bark));
     if (!cards.indices.empty()) {
-        tinygltf::Primitive leaves = surface_primitive(g, cards, 1);
+        tinygltf::Primitive leaves = surface_primitive(g, cards, mat.leaves);
         add_leaf_attributes(g, leaves, tree, cards, stiffness);
         mesh.primitives.push_back(std::move(leaves));
     }
+    if (mesh.primitives.empty()) return -1;
     tinygltf::Model& m = g.model();
+    m.meshes.push_back(std::move(mesh));
+    return static_cast<int>(m.meshes.size()) - 1;
+}
+
+int add_node(GltfBuilder& g, const std::string& name, int mesh) {
     tinygltf::Node node;
     node.name = name;
-    if (!mesh.primitives.empty()) {
-        m.meshes.push_back(std::move(mesh));
-        node.mesh = static_cast<int>(m.meshes.size()) - 1;
-    }
-    m.nodes.push_back(std::move(node));
-    return static_cast<int>(m.nodes.size()) - 1;
+    node.mesh = mesh;
+    g.model().nodes.push_back(std::move(node));
+    return static_cast<int>(g.model().nodes.size()) - 1;
 }
 
 }  // namespace
 
-std::string tree_glb(const Tree& tree, const std::string& preset_name,
-                     const WindStiffness& stiffness, const TreeLook& look) {
-    GltfBuilder g;
-    add_materials(g, look);
-    const std::string name = preset_name + "-seed-" + std::to_string(tree.seed);
+TreeMeshes add_tree_meshes(GltfBuilder& g, const Tree& tree, const std::string& name,
+                           const WindStiffness& stiffness, const TreeLook& look,
+                           TreeMaterials materials, bool low_only) {
     std::vector<uint32_t> all(tree.leaves.size()), kept;
     for (uint32_t i = 0; i < all.size(); ++i) {
         all[i] = i;
         if (tree.leaves.fade_end[i] > 1.0f) kept.push_back(i);
     }
-    const int lod0 = add_level(g, name + "_LOD0", bark_surface(tree.render, tree.branches),
-                               leaf_cards(tree, look, all), tree, stiffness);
-    tinygltf::Model& m = g.model();
-    if (!tree.lod.quads.empty()) {
+    TreeMeshes out;
+    out.kept = kept.size();
+    // A tree grown without its low-detail mesh (a scene's) takes its control mesh for bark.
+    const QuadMesh& low = tree.lod.quads.empty() ? tree.control : tree.lod;
+    const bool has_low = !tree.lod.quads.empty() || low_only;
+    if (!low_only)
+        out.lod0 = add_level(g, name + "_LOD0", bark_surface(tree.render, tree.branches),
+                             leaf_cards(tree, look, all), tree, stiffness, materials);
+    if (has_low) {
         // The painter grows the leaves that never fade as the others go (Cook et al.: area by
         // 1 / kept); the cards, which do not spread over the crown as the painter's do, take
         // the whole of it.
         const float grow =
             kept.empty() ? 1.0f
                          : static_cast<float>(std::sqrt(double(all.size()) / double(kept.size())));
-        const int lod1 = add_level(g, name + "_LOD1", bark_surface(tree.lod, tree.branches),
-                                   leaf_cards(tree, look, kept, grow), tree, stiffness);
-        // MSFT_lod: an engine that knows it (Babylon.js, glTFast) switches to level 1 below the
-        // screen coverage given; one that does not shows level 0 alone, since level 1 is in no
-        // scene (Blender 3.4 imports it too, as a second object named _LOD1).
-        tinygltf::Value::Object lod;
-        lod["ids"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(lod1)});
-        m.nodes[lod0].extensions["MSFT_lod"] = tinygltf::Value(std::move(lod));
-        m.nodes[lod0].extras = to_gltf_value({{"MSFT_screencoverage", {0.25, 0.02}}});
-        m.extensionsUsed.push_back("MSFT_lod");
+        out.lod1 = add_level(g, name + "_LOD1", bark_surface(low, tree.branches),
+                             leaf_cards(tree, look, kept, grow), tree, stiffness, materials);
     }
+    if (low_only) out.lod0 = out.lod1, out.lod1 = -1;
+    return out;
+}
+
+int add_tree_lod_node(GltfBuilder& g, const std::string& name, const TreeMeshes& meshes) {
+    const int lod0 = add_node(g, name + "_LOD0", meshes.lod0);
+    if (meshes.lod1 < 0) return lod0;
+    const int lod1 = add_node(g, name + "_LOD1", meshes.lod1);
+    // MSFT_lod: an engine that knows it (Babylon.js, glTFast) switches to level 1 below the
+    // screen coverage given; one that does not shows level 0 alone, since level 1 is in no
+    // scene (Blender 3.4 imports it too, as a second object named _LOD1).
+    tinygltf::Model& m = g.model();
+    tinygltf::Value::Object lod;
+    lod["ids"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(lod1)});
+    m.nodes[lod0].extensions["MSFT_lod"] = tinygltf::Value(std::move(lod));
+    m.nodes[lod0].extras = to_gltf_value({{"MSFT_screencoverage", {0.25, 0.02}}});
+    if (std::find(m.extensionsUsed.begin(), m.extensionsUsed.end(), "MSFT_lod") ==
+        m.extensionsUsed.end())
+        m.extensionsUsed.push_back("MSFT_lod");
+    return lod0;
+}
+
+std::string tree_glb(const Tree& tree, const std::string& preset_name,
+                     const WindStiffness& stiffness, const TreeLook& look) {
+    GltfBuilder g;
+    const TreeMaterials materials = add_tree_materials(g, look);
+    const std::string name = preset_name + "-seed-" + std::to_string(tree.seed);
+    const TreeMeshes meshes = add_tree_meshes(g, tree, name, stiffness, look, materials);
+    const int lod0 = add_tree_lod_node(g, name, meshes);
+    tinygltf::Model& m = g.model();
     tinygltf::Node root;
     root.name = name;
     root.translation = {tree.origin.x, tree.origin.y, tree.origin.z};
@@ -379,7 +416,7 @@ std::string tree_glb(const Tree& tree, const std::string& preset_name,
     extras["seed"] = tree.seed;
     extras["id"] = tree.id;
     extras["leaves"] = tree.leaves.size();
-    extras["kept_leaves"] = kept.size();
+    extras["kept_leaves"] = meshes.kept;
     extras["stiffness"] = {
         {"trunk", stiffness.trunk}, {"limbs", stiffness.limbs}, {"leaves", stiffness.leaves}};
     root.extras = to_gltf_value(nlohmann::json(extras));

@@ -60,4 +60,25 @@ std::vector<uint8_t> leaf_texture(const TreeLook& look, int cell = 128);
 std::string tree_glb(const Tree& tree, const std::string& preset_name,
                      const WindStiffness& stiffness, const TreeLook& look);
 
+// The pieces tree_glb is made of, for files of many trees (a scene's export).
+class GltfBuilder;
+struct TreeMaterials {
+    int bark = -1, leaves = -1;
+};
+// The bark and leaf materials of a look (the leaf atlas among its textures), named with
+// `prefix`.
+TreeMaterials add_tree_materials(GltfBuilder& g, const TreeLook& look,
+                                 const std::string& prefix = "");
+struct TreeMeshes {
+    int lod0 = -1, lod1 = -1;  // meshes; lod1 -1 without a low-detail model
+    size_t kept = 0;           // leaves on level 1
+};
+// `low_only`: the low-detail level alone, as level 0 (a big scene's light export); a tree
+// grown without its low-detail mesh gives its control mesh there.
+TreeMeshes add_tree_meshes(GltfBuilder& g, const Tree& tree, const std::string& name,
+                           const WindStiffness& stiffness, const TreeLook& look,
+                           TreeMaterials materials, bool low_only = false);
+// A node NAME_LOD0 holding level 0, with level 1 as MSFT_lod's NAME_LOD1 node (in no scene).
+int add_tree_lod_node(GltfBuilder& g, const std::string& name, const TreeMeshes& meshes);
+
 }  // namespace pleinair

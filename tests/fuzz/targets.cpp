@@ -13,6 +13,7 @@
 #include "pipeline/input/graftal_io.h"
 #include "pipeline/input/imposter_io.h"
 #include "pipeline/input/json_params.h"
+#include "pipeline/input/gltf_import.h"
 #include "pipeline/input/particle_files.h"
 #include "pipeline/input/presets.h"
 #include "pipeline/input/scene.h"
@@ -178,6 +179,28 @@ int particle_file(const uint8_t* data, size_t size) {
             if (!p.color.empty() && !std::isfinite(p.color[i].x + p.color[i].y + p.color[i].z))
                 finding("particle_file", "a non-finite colour");
         }
+    });
+    return 0;
+}
+
+int gltf(const uint8_t* data, size_t size) {
+    // Bytes as a .glb or .gltf with no file around it: its triangles, then its camera's track.
+    std::shared_ptr<const GltfDocument> doc;
+    refused_cleanly("gltf", [&] { doc = parse_gltf(text(data, size), "fuzz.glb", "", "s", "/p"); });
+    if (!doc) return 0;
+    refused_cleanly("gltf", [&] {
+        const QuadMesh m = gltf_triangles(*doc, {}, glm::dvec3(0.0), 1.0, "s", "/p");
+        for (const glm::vec3& p : m.positions)
+            if (!std::isfinite(p.x + p.y + p.z)) finding("gltf", "a vertex that is not finite");
+        for (const glm::uvec4& q : m.quads)
+            for (int c = 0; c < 4; ++c)
+                if (q[c] >= m.positions.size()) finding("gltf", "an index past the vertices");
+    });
+    refused_cleanly("gltf", [&] {
+        const CameraTrack t = gltf_camera_track(*doc, "", 10.0, 16.0 / 9.0, 24.0, "s", "/p");
+        for (const CameraKey& k : t.keys)
+            if (!finite(k.position) || !finite(k.look_at) || !finite(k.up) || !std::isfinite(k.time))
+                finding("gltf", "a camera key that is not finite");
     });
     return 0;
 }

@@ -20,6 +20,7 @@ int studio_request(const uint8_t* data, size_t size);  // a studio change reques
 int particle_file(const uint8_t* data, size_t size);
 int graftal(const uint8_t* data, size_t size);   // a graftal description, then its tuft replayed
 int imposter(const uint8_t* data, size_t size);  // an imposter description, then one drawn
+int gltf(const uint8_t* data, size_t size);  // a glTF file's triangles and camera track
 
 struct Target {
     const char* name;
@@ -35,6 +36,7 @@ inline constexpr Target kTargets[] = {
     {"particle_file", particle_file},
     {"graftal", graftal},
     {"imposter", imposter},
+    {"gltf", gltf},
 };
 
 }  // namespace pleinair::fuzz

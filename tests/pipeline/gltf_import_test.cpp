@@ -1,0 +1,260 @@
+// glTF files read into scenes: triangles placed by the node hierarchy, a camera node's animation
+// as the track, strokes spread by area, and every kind of bad file refused with its place.
+#include "pipeline/input/gltf_import.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <glm/geometric.hpp>
+
+#include "pipeline/input/error.h"
+#include "pipeline/input/scene.h"
+#include "pipeline/output/gltf_builder.h"
+#include "pipeline/shot/landscape.h"
+#include "test_util.h"
+
+namespace pleinair {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A ground quad (two triangles, 10 x 10 at y 0) under a parent node moved by (100, 0, 0), a
+// triangle node "Tri", and a camera node "Cam" walking from z 10 to z 0 over two seconds
+// (times 1/24 .. 49/24, as Blender bakes frames 1 to 49) while turning a quarter about y.
+struct Fixture {
+    GltfBuilder g;
+    int ground_mesh = -1;
+    Fixture() {
+        tinygltf::Model& m = g.model();
+        auto mesh = [&](const std::string& name, const std::vector<glm::vec3>& p,
+                        const std::vector<uint32_t>& idx, int mode = TINYGLTF_MODE_TRIANGLES) {
+            tinygltf::Primitive prim;
+            prim.mode = mode;
+            prim.attributes["POSITION"] = g.add_positions(p);
+            prim.indices = g.add_indices(idx);
+            tinygltf::Mesh me;
+            me.name = name;
+            me.primitives.push_back(prim);
+            m.meshes.push_back(me);
+            return static_cast<int>(m.meshes.size()) - 1;
+        };
+        ground_mesh =
+            mesh("ground", {{0, 0, 0}, {10, 0, 0}, {10, 0, 10}, {0, 0, 10}}, {0, 2, 1, 0, 3, 2});
+        const int tri = mesh("tri", {{0, 1, 0}, {1, 1, 0}, {0, 2, 0}}, {0, 1, 2});
+        tinygltf::Node ground, parent, tri_node, cam;
+        ground.name = "Ground", ground.mesh = ground_mesh;
+        parent.name = "Offset", parent.translation = {100, 0, 0}, parent.children = {0};
+        tri_node.name = "Tri", tri_node.mesh = tri;
+        tinygltf::Camera camera;
+        camera.type = "perspective";
+        camera.perspective.yfov = 0.6;
+        camera.perspective.aspectRatio = 16.0 / 9.0;
+        camera.perspective.znear = 0.1;
+        m.cameras.push_back(camera);
+        cam.name = "Cam", cam.camera = 0;
+        m.nodes = {ground, parent, tri_node, cam};
+        std::vector<float> times;
+        std::vector<glm::vec3> moves;
+        std::vector<glm::vec4> turns;
+        for (int f = 1; f <= 49; ++f) {
+            times.push_back(static_cast<float>(f) / 24.0f);
+            const double u = (f - 1) / 48.0;
+            moves.push_back(glm::vec3(0, 2, 10 - 10 * u));
+            const double a = 0.25 * M_PI * u;  // about y, half of it as a quaternion's angle
+            turns.push_back(glm::vec4(0, std::sin(a), 0, std::cos(a)));
+        }
+        const int in = g.add_scalar(times, false);
+        m.accessors[in].minValues = {times.front()}, m.accessors[in].maxValues = {times.back()};
+        tinygltf::Animation anim;
+        anim.name = "walk";
+        for (int k = 0; k < 2; ++k) {
+            tinygltf::AnimationSampler s;
+            s.input = in;
+            s.output = k == 0 ? g.add_vec3(moves, false) : g.add_vec4(turns, false);
+            s.interpolation = "LINEAR";
+            anim.samplers.push_back(s);
+            tinygltf::AnimationChannel c;
+            c.sampler = k, c.target_node = 3, c.target_path = k == 0 ? "translation" : "rotation";
+            anim.channels.push_back(c);
+        }
+        m.animations.push_back(anim);
+        tinygltf::Scene sc;
+        sc.nodes = {1, 2, 3};
+        m.scenes.push_back(sc);
+        m.defaultScene = 0;
+    }
+    fs::path write(const fs::path& dir, const std::string& name = "f.glb") {
+        std::ofstream(dir / name, std::ios::binary) << g.glb();
+        return dir / name;
+    }
+};
+
+std::string error_of(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.source(), "s.json");
+        return e.problems().at(0).message;
+    }
+    return "";
+}
+
+TEST(GltfImport, TrianglesStandWhereTheirNodesPutThem) {
+    const fs::path dir = test::temp_dir("gltf-import");
+    Fixture fx;
+    const auto doc = load_gltf(fx.write(dir), "s.json", "/meshes/0/file");
+    const QuadMesh all = gltf_triangles(*doc, {}, glm::dvec3(0.0), 1.0, "s.json", "/p");
+    EXPECT_EQ(all.quads.size(), 3u);
+    const QuadMesh ground =
+        gltf_triangles(*doc, {"Ground"}, glm::dvec3(0, 5, 0), 2.0, "s.json", "/p");
+    ASSERT_EQ(ground.quads.size(), 2u);
+    // (10, 0, 10) under the parent's (100, 0, 0), scaled by 2, then moved up 5.
+    EXPECT_EQ(ground.positions[2], glm::vec3(220, 5, 20));
+    for (const glm::uvec4& q : ground.quads) EXPECT_EQ(q[2], q[3]);  // a triangle as Embree's quad
+    // Faces up: counter-clockwise seen from +y, as glTF's front faces are.
+    const glm::vec3 n =
+        glm::cross(ground.positions[ground.quads[0][1]] - ground.positions[ground.quads[0][0]],
+                   ground.positions[ground.quads[0][2]] - ground.positions[ground.quads[0][0]]);
+    EXPECT_GT(n.y, 0.0f);
+    EXPECT_NE(error_of([&] {
+                  gltf_triangles(*doc, {"Hill"}, {}, 1.0, "s.json", "/p");
+              }).find("no mesh node \"Hill\" (mesh nodes: Ground, Tri)"),
+              std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST(GltfImport, ACameraNodesAnimationIsTheTrackFrameForFrame) {
+    const fs::path dir = test::temp_dir("gltf-camera");
+    Fixture fx;
+    const auto doc = load_gltf(fx.write(dir), "s.json", "/camera/gltf/file");
+    const CameraTrack t = gltf_camera_track(*doc, "Cam", 20.0, 16.0 / 9.0, 24, "s.json", "/p");
+    ASSERT_EQ(t.keys.size(), 49u);
+    EXPECT_EQ(t.interpolation, TrackInterpolation::kLinear);
+    for (int f = 1; f <= 49; f += 12) {
+        const CameraKey& k = t.keys[f - 1];
+        // On the frame grid exactly, though the file's times are floats.
+        EXPECT_EQ(k.time, frame_time(f, 24));
+        const double u = (f - 1) / 48.0, a = 0.5 * M_PI * u;
+        EXPECT_NEAR(k.position.z, 10 - 10 * u, 1e-5);
+        // -z turned by a about y, focused 20 ahead.
+        const glm::dvec3 forward = glm::normalize(k.look_at - k.position);
+        EXPECT_NEAR(forward.x, -std::sin(a), 1e-5);
+        EXPECT_NEAR(forward.z, -std::cos(a), 1e-5);
+        EXPECT_NEAR(glm::length(k.look_at - k.position), 20.0, 1e-9);
+        EXPECT_NEAR(k.up.y, 1.0, 1e-6);
+        EXPECT_NEAR(k.fov, 0.6 * 180 / M_PI, 1e-4);
+    }
+    EXPECT_NE(error_of([&] {
+                  gltf_camera_track(*doc, "Cam", 20, 4.0 / 3.0, 24, "s.json", "/p");
+              }).find("aspect ratio"),
+              std::string::npos);
+    EXPECT_NE(error_of([&] {
+                  gltf_camera_track(*doc, "Eye", 20, 16.0 / 9.0, 24, "s.json", "/p");
+              }).find("no camera node \"Eye\" (cameras: \"Cam\")"),
+              std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST(GltfImport, BadFilesAreNamedWithTheirPlace) {
+    const fs::path dir = test::temp_dir("gltf-bad");
+    auto read = [&](const fs::path& f) {
+        return error_of([&] {
+            const auto doc = load_gltf(f, "s.json", "/meshes/0/file");
+            gltf_triangles(*doc, {}, {}, 1.0, "s.json", "/meshes/0/file");
+        });
+    };
+    EXPECT_NE(read(dir / "none.glb").find("none.glb"), std::string::npos);
+    {
+        Fixture fx;
+        const std::string whole = fx.g.glb();
+        std::ofstream(dir / "cut.glb", std::ios::binary) << whole.substr(0, whole.size() / 2);
+        EXPECT_NE(read(dir / "cut.glb").find("cannot read glTF"), std::string::npos)
+            << read(dir / "cut.glb");
+    }
+    {
+        Fixture fx;  // an index past the ground's four vertices
+        tinygltf::Model& m = fx.g.model();
+        const int idx = m.meshes[0].primitives[0].indices;
+        auto& buf = m.buffers[0].data;
+        const auto& view = m.bufferViews[m.accessors[idx].bufferView];
+        const uint32_t bad = 7;
+        std::memcpy(buf.data() + view.byteOffset + 4, &bad, 4);
+        EXPECT_NE(read(fx.write(dir, "index.glb"))
+                      .find("mesh \"ground\" primitive 0: index 1 is 7, past its 4 vertices"),
+                  std::string::npos)
+            << read(dir / "index.glb");
+    }
+    {
+        Fixture fx;  // an accessor that claims more elements than its view holds
+        tinygltf::Model& m = fx.g.model();
+        m.accessors[m.meshes[0].primitives[0].attributes["POSITION"]].count = 40;
+        EXPECT_NE(read(fx.write(dir, "past.glb")).find("run past the end of its view"),
+                  std::string::npos)
+            << read(dir / "past.glb");
+    }
+    {
+        Fixture fx;  // a NaN vertex
+        tinygltf::Model& m = fx.g.model();
+        const int pos = m.meshes[0].primitives[0].attributes["POSITION"];
+        auto& buf = m.buffers[0].data;
+        const float nan = std::nanf("");
+        std::memcpy(buf.data() + m.bufferViews[m.accessors[pos].bufferView].byteOffset + 16, &nan,
+                    4);
+        EXPECT_NE(read(fx.write(dir, "nan.glb")).find("vertex 1 is not finite"), std::string::npos)
+            << read(dir / "nan.glb");
+    }
+    {
+        Fixture fx;  // lines, not triangles
+        fx.g.model().meshes[1].primitives[0].mode = TINYGLTF_MODE_LINE;
+        EXPECT_NE(read(fx.write(dir, "lines.glb"))
+                      .find("mesh \"tri\" primitive 0 has mode 1; only triangles"),
+                  std::string::npos)
+            << read(dir / "lines.glb");
+    }
+    fs::remove_all(dir);
+}
+
+// A scene's /meshes: strokes over the ground as many per area as asked, on its surface, with
+// the mesh among the rocks that cast shadows and hide strokes; a /camera/gltf gives the track.
+TEST(GltfImport, ASceneOfMeshesAndACameraFromAFile) {
+    const fs::path dir = test::temp_dir("gltf-scene");
+    Fixture fx;
+    fx.write(dir);
+    std::ofstream(dir / "scene.json") << R"({
+      "camera": {"width": 160, "height": 90, "gltf": {"file": "f.glb", "camera": "Cam"}},
+      "materials": {"rock": {"shader": "rock"}},
+      "meshes": [{"file": "f.glb", "nodes": "Ground", "density": 4, "displacement": 0}]
+    })";
+    const SceneDesc s = load_scene(dir / "scene.json");
+    ASSERT_EQ(s.meshes.size(), 1u);
+    EXPECT_EQ(s.camera_track.keys.size(), 49u);
+    EXPECT_TRUE(s.animated());
+    const BuiltLandscape land = build_landscape(s);
+    ASSERT_EQ(land.rocks.size(), 1u);
+    EXPECT_EQ(land.rock_material.at(0), s.meshes[0].material);
+    const SurfaceParticles strokes = land.all_strokes();
+    // 100 square units at 4 a unit (times the build's surface density).
+    const double want = 100 * 4 * s.build.surface_density;
+    EXPECT_NEAR(double(strokes.size()), want, 4 * std::sqrt(want));
+    for (size_t i = 0; i < strokes.size(); ++i) {
+        const glm::vec3 p = strokes.position[i];
+        ASSERT_NEAR(p.y, 0.0f, 1e-5);
+        ASSERT_TRUE(p.x >= 100 && p.x <= 110 && p.z >= 0 && p.z <= 10) << p.x << " " << p.z;
+    }
+    std::ofstream(dir / "both.json") << R"({
+      "camera": {"width": 160, "height": 90, "gltf": {"file": "f.glb"},
+                 "track": [{"time": 0, "position": [0, 1, 0], "look_at": [0, 1, -1]}]}})";
+    EXPECT_NE(error_of([&] {
+                  try {
+                      load_scene(dir / "both.json");
+                  } catch (const InputError& e) {
+                      throw InputError("s.json", e.problems());
+                  }
+              }).find("a camera from /camera/gltf brings its own track"),
+              std::string::npos);
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace pleinair
