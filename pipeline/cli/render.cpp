@@ -143,8 +143,8 @@ void export_scene(const SceneDesc& scene, const RenderCommand& cmd) {
     const fs::path path(cmd.export_glb);
     if (fs::path parent = path.parent_path(); !parent.empty()) fs::create_directories(parent);
     write_file_atomic(path, bytes);
-    std::printf("wrote %s (%.1f MB): %zu trees from %zu surfaces' worth of meshes\n",
-                path.string().c_str(), double(bytes.size()) / 1e6, trees.size(),
+    std::printf("wrote %s (%.1f MB): %zu trees, %zu surfaces\n", path.string().c_str(),
+                double(bytes.size()) / 1e6, trees.size(),
                 land.rocks.size() + (land.has_terrain ? 1 : 0) + (land.has_water ? 1 : 0));
 }
 

@@ -152,7 +152,7 @@ void add_trees(GltfBuilder& g, const SceneDesc& scene, const std::vector<BuiltTr
 }
 
 // The camera: a still's transform, or a track sampled at every frame (linear between frames,
-// as Blender bakes its own).
+// as Blender bakes its own), at Blender's times.
 void add_camera(GltfBuilder& g, const SceneDesc& scene, std::vector<int>& roots) {
     tinygltf::Model& m = g.model();
     tinygltf::Camera cam;
@@ -184,7 +184,9 @@ void add_camera(GltfBuilder& g, const SceneDesc& scene, std::vector<int>& roots)
         const double t = frame_time(f, scene.fps);
         const Camera c = view_at(scene, t).camera;
         const glm::dquat q = camera_rotation(c);
-        times.push_back(static_cast<float>(t));
+        // Frame / fps, as Blender writes and reads glTF times: frame N here is Blender's frame N
+        // (pleinair's own frame N is at (N - 1) / fps).
+        times.push_back(static_cast<float>(double(f) / scene.fps));
         at.emplace_back(c.eye);
         turn.emplace_back(q.x, q.y, q.z, q.w);
     }

@@ -50,4 +50,24 @@ for p in json.load(open('$scene/points.json'))['points']: print(','.join(map(rep
     >/dev/null
 test -s "$scene/f_0001.png" && test -s "$scene/f_0048.png"
 echo "  painted frames 1 and 48 of the Blender scene: $scene"
+echo "== pleinair exports scenes; Blender imports one and sees what pleinair's camera sees"
+"$pleinair" render "$scene/scene.json" --export "$scene/back.glb" >/dev/null
+"$pleinair" render forest-edge --export "$work/out/forest-edge.glb" --export-low-detail >/dev/null
+size="--set /camera/width=320 --set /camera/height=180"
+# shellcheck disable=SC2086
+"$pleinair" render grove-orbit --export "$work/out/grove.glb" --export-low-detail \
+    --export-instancing nodes $size >/dev/null
+(cd "$work" && node validate.mjs "$scene/back.glb" "$work/out/forest-edge.glb" \
+    "$work/out/grove.glb" | grep -v "^  info")
+blender -b --factory-startup --python-exit-code 1 -P "$here/blender_import_scene.py" -- \
+    "$work/out/grove.glb" 9 "$here/grove_points.json" "$work/out/grove_points.json" 2>&1 |
+    grep -E "^(ok|FAIL)|Error|Traceback"
+test "${PIPESTATUS[0]}" -eq 0
+points=()
+while read -r p; do points+=(--point "$p"); done < <(/usr/bin/python3 -c "
+import json
+for p in json.load(open('$here/grove_points.json'))['points']: print(','.join(map(repr, p)))")
+# shellcheck disable=SC2086
+"$pleinair" camera grove-orbit $size "${points[@]}" >"$work/out/grove_camera.jsonl"
+/usr/bin/python3 "$here/match_camera.py" "$work/out/grove_points.json" "$work/out/grove_camera.jsonl"
 echo "test-clients: all passed"

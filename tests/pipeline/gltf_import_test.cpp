@@ -7,10 +7,13 @@
 #include <cmath>
 #include <fstream>
 #include <glm/geometric.hpp>
+#include <map>
 
+#include "pipeline/frame/frame_view.h"
 #include "pipeline/input/error.h"
 #include "pipeline/input/scene.h"
 #include "pipeline/output/gltf_builder.h"
+#include "pipeline/output/gltf_scene.h"
 #include "pipeline/shot/landscape.h"
 #include "test_util.h"
 
@@ -253,6 +256,111 @@ TEST(GltfImport, ASceneOfMeshesAndACameraFromAFile) {
                   }
               }).find("a camera from /camera/gltf brings its own track"),
               std::string::npos);
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace pleinair
+
+namespace pleinair {
+namespace {
+
+// A scene with two families (one drawn from 2 shared members), a rock and a camera track.
+const char* kExportScene = R"({
+  "camera": {"width": 160, "height": 90,
+             "track": [{"time": 0, "position": [0, 3, 30], "look_at": [0, 3, 0]},
+                       {"time": 1, "position": [6, 4, 24], "look_at": [0, 2, 0]}]},
+  "materials": {"grass": {"shader": "grass"}, "rock": {"shader": "rock"}},
+  "terrain": {"min": [-40, -40], "max": [40, 40], "resolution": 17},
+  "rocks": [{"position": [5, 0, 5], "radius": 1.5}],
+  "families": {"shrubs": {"preset": "shrub", "members": 2}, "birch": {"preset": "birch"}},
+  "trees": [{"family": "shrubs", "position": [-6, 0, 0], "seed": 1},
+            {"family": "shrubs", "position": [-3, 0, 2], "seed": 2},
+            {"family": "shrubs", "position": [0, 0, 4], "seed": 3},
+            {"family": "shrubs", "position": [3, 0, 2], "seed": 4, "rotation": 90, "scale": 1.5},
+            {"family": "birch", "position": [8, 0, -4], "seed": 5}]
+})";
+
+struct Exported {
+    SceneDesc scene;
+    std::vector<BuiltTree> trees;
+    tinygltf::Model model;
+};
+
+Exported export_scene(const fs::path& dir, Instancing instancing) {
+    std::ofstream(dir / "scene.json") << kExportScene;
+    Exported e;
+    e.scene = load_scene(dir / "scene.json");
+    e.trees = build_trees(e.scene, false);
+    SceneExport options;
+    options.instancing = instancing;
+    const std::string bytes = scene_glb(e.scene, build_landscape(e.scene), e.trees, options);
+    EXPECT_EQ(bytes, scene_glb(e.scene, build_landscape(e.scene), e.trees, options));
+    std::ofstream(dir / "scene.glb", std::ios::binary) << bytes;
+    tinygltf::TinyGLTF loader;
+    std::string err, warn;
+    EXPECT_TRUE(loader.LoadBinaryFromMemory(&e.model, &err, &warn,
+                                            reinterpret_cast<const unsigned char*>(bytes.data()),
+                                            static_cast<unsigned>(bytes.size())))
+        << err;
+    return e;
+}
+
+// The exported camera, read back as /camera/gltf reads Blender's, is the track's at every
+// frame; the trees are instances of their grown members.
+TEST(GltfExport, ASceneReadsBackWithItsCameraAndItsTrees) {
+    const fs::path dir = test::temp_dir("gltf-export");
+    Exported e = export_scene(dir, Instancing::kGpu);
+    const tinygltf::Model& m = e.model;
+    // Shared members on one instancing node each: as many instances as trees drawn from them.
+    size_t instanced = 0, plain = 0;
+    for (const tinygltf::Node& n : m.nodes) {
+        if (auto it = n.extensions.find("EXT_mesh_gpu_instancing"); it != n.extensions.end())
+            instanced +=
+                m.accessors[it->second.Get("attributes").Get("TRANSLATION").GetNumberAsInt()].count;
+        else if (n.name.rfind("tree-", 0) == 0)
+            ++plain;
+    }
+    EXPECT_EQ(instanced + plain, e.trees.size());
+    EXPECT_GE(instanced, 2u);
+    const auto doc = load_gltf(dir / "scene.glb", "s.json", "/camera/gltf/file");
+    const CameraTrack back =
+        gltf_camera_track(*doc, "camera", 10.0, 16.0 / 9.0, e.scene.fps, "s.json", "/p");
+    const FrameRange frames = animation_frames(e.scene);
+    ASSERT_EQ(back.keys.size(), size_t(frames.last - frames.first + 1));
+    for (int f : frames.frames()) {
+        const Camera want = view_at(e.scene, frame_time(f, e.scene.fps)).camera;
+        const CameraKey& k = back.keys[f - frames.first];
+        EXPECT_EQ(k.time, frame_time(f, e.scene.fps));
+        EXPECT_LT(glm::length(k.position - want.eye), 1e-4);
+        EXPECT_LT(glm::length(glm::normalize(k.look_at - k.position) - want.forward), 1e-5);
+        EXPECT_LT(glm::length(k.up - want.up), 1e-5);
+    }
+    fs::remove_all(dir);
+}
+
+TEST(GltfExport, NodesInstancingGivesEachTreeANodeOverItsMembersMesh) {
+    const fs::path dir = test::temp_dir("gltf-export-nodes");
+    Exported e = export_scene(dir, Instancing::kNodes);
+    std::map<int, int> uses;
+    size_t trees = 0;
+    for (const tinygltf::Node& n : e.model.nodes) {
+        EXPECT_EQ(n.extensions.count("EXT_mesh_gpu_instancing"), 0u);
+        if (n.name.rfind("tree-", 0) == 0 && n.name.find("_LOD0") != std::string::npos) {
+            ++trees;
+            ++uses[n.mesh];
+        }
+    }
+    EXPECT_EQ(trees, e.trees.size());
+    // Four shrubs from two members, and a birch of its own: three meshes.
+    EXPECT_EQ(uses.size(), 3u);
+    // The rotated, scaled shrub: its node turns a quarter about +y and scales by 1.5.
+    for (const tinygltf::Node& n : e.model.nodes)
+        if (n.name.rfind("tree-3-", 0) == 0 && n.name.find("_LOD0") != std::string::npos) {
+            ASSERT_EQ(n.rotation.size(), 4u);
+            EXPECT_NEAR(n.rotation[1], std::sin(M_PI / 4), 1e-9);
+            EXPECT_EQ(n.scale, std::vector<double>(3, 1.5));
+        }
     fs::remove_all(dir);
 }
 
