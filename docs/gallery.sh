@@ -27,9 +27,9 @@ jpg() {
 }
 
 # The first frame a second into an animated scene (its own file or one it extends names a
-# track), or the still.
+# track, or it takes its camera from a glTF file), or the still.
 frame_of() {
-    if grep -q '"track"' "presets/scenes/$1.json"; then echo "--frame 25"; fi
+    if grep -q '"track"\|"gltf"' "presets/scenes/$1.json"; then echo "--frame 25"; fi
 }
 
 cat > "$MD" <<'EOF'

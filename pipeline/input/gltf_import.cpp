@@ -16,6 +16,7 @@
 #include "pipeline/input/error.h"
 #include "pipeline/input/limits.h"
 #include "pipeline/input/presets.h"
+#include "shading/portable_math.h"
 
 namespace pleinair {
 
@@ -222,13 +223,12 @@ std::shared_ptr<const GltfDocument> parse_gltf(const std::string& bytes, const s
     const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
     bool ok = false;
     try {
-        ok = binary ? loader.LoadBinaryFromMemory(
-                          &doc->model, &err, &warn,
-                          reinterpret_cast<const unsigned char*>(bytes.data()),
-                          static_cast<unsigned>(bytes.size()), base.string())
-                    : loader.LoadASCIIFromString(&doc->model, &err, &warn, bytes.data(),
-                                                 static_cast<unsigned>(bytes.size()),
-                                                 base.string());
+        ok = binary
+                 ? loader.LoadBinaryFromMemory(&doc->model, &err, &warn,
+                                               reinterpret_cast<const unsigned char*>(bytes.data()),
+                                               static_cast<unsigned>(bytes.size()), base.string())
+                 : loader.LoadASCIIFromString(&doc->model, &err, &warn, bytes.data(),
+                                              static_cast<unsigned>(bytes.size()), base.string());
     } catch (const std::exception& e) {
         // tinygltf 2.7 indexes some malformed documents with .at() (found by the fuzz target).
         err = std::string("malformed (") + e.what() + ")";
@@ -336,9 +336,23 @@ std::vector<double> channel_at(const std::vector<double>& times, const std::vect
     const double f = (t - times[k]) / std::max(times[k + 1] - times[k], 1e-12);
     std::vector<double> a = key(k), b = key(k + 1);
     if (rotation) {
-        const glm::dquat q =
-            glm::slerp(glm::dquat(a[3], a[0], a[1], a[2]), glm::dquat(b[3], b[0], b[1], b[2]), f);
-        return {q.x, q.y, q.z, q.w};
+        // Spherical, the short way round, through pmath (glm::slerp is libm's).
+        double d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3];
+        if (d < 0) {
+            for (double& x : b) x = -x;
+            d = -d;
+        }
+        double wa = 1 - f, wb = f;
+        if (d < 0.9995) {
+            const double theta = pmath::acos(std::min(d, 1.0)), s = pmath::sin(theta);
+            wa = pmath::sin((1 - f) * theta) / s, wb = pmath::sin(f * theta) / s;
+        }
+        std::vector<double> q(4);
+        double len = 0;
+        for (int c = 0; c < 4; ++c) q[c] = wa * a[c] + wb * b[c], len += q[c] * q[c];
+        len = std::sqrt(len);
+        for (double& x : q) x = len > 0 ? x / len : x;
+        return q;
     }
     for (int c = 0; c < width; ++c) a[c] += (b[c] - a[c]) * f;
     return a;
@@ -346,12 +360,12 @@ std::vector<double> channel_at(const std::vector<double>& times, const std::vect
 
 }  // namespace
 
-CameraTrack gltf_camera_track(const GltfDocument& doc, const std::string& name,
-                              double focus_distance, double aspect, double fps,
-                              const std::string& source, const std::string& pointer) {
-    const Reader rd(doc, source, pointer);
-    const tinygltf::Model& m = doc.model;
-    const std::vector<int> parent = parents_of(rd);
+namespace {
+
+// The camera node named `name` (the first with a camera when empty), checked: perspective, a
+// field of view in range. Its yfov in degrees goes to `yfov`.
+int find_camera(const Reader& rd, const std::string& name, double& yfov) {
+    const tinygltf::Model& m = rd.model();
     int node = -1;
     std::string cameras;
     for (int i = 0; i < static_cast<int>(m.nodes.size()); ++i) {
@@ -367,48 +381,83 @@ CameraTrack gltf_camera_track(const GltfDocument& doc, const std::string& name,
         rd.fail(node_label(m, node) + " names a camera that does not exist");
     const tinygltf::Camera& cam = m.cameras[m.nodes[node].camera];
     if (cam.type != "perspective") rd.fail(node_label(m, node) + " is not a perspective camera");
-    const double yfov = cam.perspective.yfov * 180.0 / M_PI;
+    yfov = cam.perspective.yfov * 180.0 / M_PI;
     if (!(yfov > 0.001 && yfov < 179)) rd.fail(node_label(m, node) + ": yfov out of range");
-    if (cam.perspective.aspectRatio > 0 && std::abs(cam.perspective.aspectRatio - aspect) > 1e-3)
-        rd.fail(node_label(m, node) + " has aspect ratio " +
-                std::to_string(cam.perspective.aspectRatio) +
-                ", the scene's /camera/width over /camera/height " + std::to_string(aspect) +
-                ": set them to the size it was laid out for");
+    return node;
+}
 
-    // The channels that move the camera: of it or of any node above it.
+struct Channel {
+    int node;
+    std::string path, interpolation;
+    std::vector<double> times, values;
+};
+
+// The animation channels that move `node`: of it or of any node above it, read and checked;
+// their sample times go into `times`.
+std::vector<Channel> channels_moving(const Reader& rd, const std::vector<int>& parent, int node,
+                                     std::set<double>& times) {
     std::set<int> chain;
     for (int n = node; n >= 0; n = parent[n]) chain.insert(n);
-    struct Channel {
-        int node;
-        std::string path, interpolation;
-        std::vector<double> times, values;
-    };
     std::vector<Channel> channels;
-    std::set<double> times;
-    for (const tinygltf::Animation& anim : m.animations)
+    for (const tinygltf::Animation& anim : rd.model().animations)
         for (const tinygltf::AnimationChannel& ch : anim.channels) {
             if (!chain.count(ch.target_node) || ch.target_path == "weights") continue;
+            const std::string what = "animation \"" + anim.name + "\"";
             if (ch.sampler < 0 || ch.sampler >= static_cast<int>(anim.samplers.size()))
-                rd.fail("animation \"" + anim.name + "\" names a sampler that does not exist");
+                rd.fail(what + " names a sampler that does not exist");
             const tinygltf::AnimationSampler& s = anim.samplers[ch.sampler];
             const int width = ch.target_path == "rotation" ? 4 : 3;
             Channel c{ch.target_node, ch.target_path,
                       s.interpolation.empty() ? "LINEAR" : s.interpolation,
-                      rd.read(s.input, 1, "animation \"" + anim.name + "\" times"),
-                      rd.read(s.output, width, "animation \"" + anim.name + "\" values")};
+                      rd.read(s.input, 1, what + " times"),
+                      rd.read(s.output, width, what + " values")};
             const size_t per = c.interpolation == "CUBICSPLINE" ? 3 : 1;
             if (c.times.empty() || c.values.size() != c.times.size() * per * width)
-                rd.fail("animation \"" + anim.name + "\": values do not match its times");
+                rd.fail(what + ": values do not match its times");
             for (size_t k = 0; k < c.times.size(); ++k) {
                 if (!std::isfinite(c.times[k]) || (k && !(c.times[k] > c.times[k - 1])))
-                    rd.fail("animation \"" + anim.name + "\": times must increase");
+                    rd.fail(what + ": times must increase");
                 times.insert(c.times[k]);
             }
             for (double v : c.values)
-                if (!std::isfinite(v))
-                    rd.fail("animation \"" + anim.name + "\": a value is not finite");
+                if (!std::isfinite(v)) rd.fail(what + ": a value is not finite");
             channels.push_back(std::move(c));
         }
+    return channels;
+}
+
+// `node`'s world matrix at time t, its channels and its parents' applied.
+glm::dmat4 posed_world(const Reader& rd, const std::vector<int>& parent, int node,
+                       const std::vector<Channel>& channels, double t) {
+    std::map<int, tinygltf::Node> posed;
+    for (const Channel& c : channels) {
+        tinygltf::Node& n = posed.try_emplace(c.node, rd.model().nodes[c.node]).first->second;
+        n.matrix.clear();
+        const bool rotation = c.path == "rotation";
+        const std::vector<double> v =
+            channel_at(c.times, c.values, rotation ? 4 : 3, c.interpolation, rotation, t);
+        if (c.path == "translation") n.translation = v;
+        if (rotation) n.rotation = v;
+        if (c.path == "scale") n.scale = v;
+    }
+    std::map<int, glm::dmat4> overrides;
+    for (const auto& [i, n] : posed) overrides[i] = local_matrix(n);
+    return world_matrix(rd, parent, node, overrides);
+}
+
+}  // namespace
+
+CameraTrack gltf_camera_track(const GltfDocument& doc, const std::string& name,
+                              double focus_distance, double fps, const std::string& source,
+                              const std::string& pointer) {
+    const Reader rd(doc, source, pointer);
+    const std::vector<int> parent = parents_of(rd);
+    double yfov = 0;
+    // The vertical field of view whatever the image's shape (the file's aspect ratio is not
+    // enforced): a preview of another shape sees as far up and down, more or less to the sides.
+    const int node = find_camera(rd, name, yfov);
+    std::set<double> times;
+    const std::vector<Channel> channels = channels_moving(rd, parent, node, times);
     if (times.empty()) times.insert(0.0);
     CameraTrack track;
     track.interpolation = TrackInterpolation::kLinear;
@@ -419,20 +468,7 @@ CameraTrack gltf_camera_track(const GltfDocument& doc, const std::string& name,
     bool on_grid = true;
     for (double t : times) on_grid &= std::abs((t - t0) * fps - std::round((t - t0) * fps)) < 1e-3;
     for (double t : times) {
-        std::map<int, tinygltf::Node> posed;
-        for (const Channel& c : channels) {
-            tinygltf::Node& n = posed.try_emplace(c.node, m.nodes[c.node]).first->second;
-            n.matrix.clear();
-            const std::vector<double> v =
-                channel_at(c.times, c.values, c.path == "rotation" ? 4 : 3, c.interpolation,
-                           c.path == "rotation", t);
-            if (c.path == "translation") n.translation = v;
-            if (c.path == "rotation") n.rotation = v;
-            if (c.path == "scale") n.scale = v;
-        }
-        std::map<int, glm::dmat4> overrides;
-        for (const auto& [i, n] : posed) overrides[i] = local_matrix(n);
-        const glm::dmat4 w = world_matrix(rd, parent, node, overrides);
+        const glm::dmat4 w = posed_world(rd, parent, node, channels, t);
         CameraKey k;
         k.time = on_grid ? std::round((t - t0) * fps) / fps : t - t0;
         k.position = glm::dvec3(w[3]);
@@ -441,7 +477,7 @@ CameraTrack gltf_camera_track(const GltfDocument& doc, const std::string& name,
         k.look_at = k.position + forward * focus_distance;
         k.fov = yfov;
         if (!std::isfinite(k.look_at.x + k.look_at.y + k.look_at.z + k.up.x + k.up.y + k.up.z))
-            rd.fail(node_label(m, node) + ": its transform at time " + std::to_string(t) +
+            rd.fail(node_label(doc.model, node) + ": its transform at time " + std::to_string(t) +
                     " is degenerate");
         track.keys.push_back(k);
     }

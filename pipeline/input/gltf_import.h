@@ -40,13 +40,13 @@ QuadMesh gltf_triangles(const GltfDocument& doc, const std::vector<std::string>&
 // A camera node as a camera track: one key per time its animation samples (translation and
 // rotation channels of the node and its parents, linear between them as Blender bakes them),
 // looking down the node's -z with its +y up, focused `focus_distance` ahead; fov from the
-// camera's yfov. `name` picks the node (empty: the first node with a camera). The file's
-// aspect ratio, when it gives one, must be `aspect` (the scene's width / height). A camera
-// without animation gives one key. Times start at 0 where the file's first sample is, and
+// camera's yfov (kept at any image shape: the file's aspect ratio is not enforced). `name`
+// picks the node (empty: the first node with a camera). A camera without animation gives one
+// key. Times start at 0 where the file's first sample is, and
 // samples within a thousandth of a frame of the `fps` grid are put on it (Blender's float
 // times), so frame N of the scene is the file's N-th baked frame.
 CameraTrack gltf_camera_track(const GltfDocument& doc, const std::string& name,
-                              double focus_distance, double aspect, double fps,
-                              const std::string& source, const std::string& pointer);
+                              double focus_distance, double fps, const std::string& source,
+                              const std::string& pointer);
 
 }  // namespace pleinair

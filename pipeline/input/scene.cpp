@@ -409,8 +409,8 @@ void visit_scene(SceneDesc& s, V& v) {
                      v.require("file");
                      v.text("file", g.file,
                             "A .glb or .gltf file, relative to the scene's folder. Frame 1 is its "
-                            "first animation sample; width over height must be its camera's "
-                            "aspect ratio.");
+                            "first animation sample; at its camera's aspect ratio the frame is "
+                            "Blender's, at another the vertical field of view is kept.");
                      v.text("camera", g.camera,
                             "Name of the camera's node; empty: the first node with a camera.");
                      v.number("focus_distance", g.focus_distance, {1e-3, 1e6}, "world units",
@@ -914,9 +914,7 @@ void load_gltf_files(const std::string& source, SceneDesc& s, std::vector<Proble
     const std::string ptr = "/camera/gltf/file";
     load_into(problems, source, ptr, [&] {
         const auto doc = load_gltf(near(g.file), source, ptr);
-        const double aspect = double(s.camera_params.width) / double(s.camera_params.height);
-        CameraTrack track =
-            gltf_camera_track(*doc, g.camera, g.focus_distance, aspect, s.fps, source, ptr);
+        CameraTrack track = gltf_camera_track(*doc, g.camera, g.focus_distance, s.fps, source, ptr);
         if (track.keys.size() == 1) {
             // A camera that does not move is a still.
             const CameraKey& k = track.keys[0];

@@ -10,10 +10,10 @@
 
 #include "pipeline/frame/imposter_draw.h"
 #include "pipeline/input/error.h"
+#include "pipeline/input/gltf_import.h"
 #include "pipeline/input/graftal_io.h"
 #include "pipeline/input/imposter_io.h"
 #include "pipeline/input/json_params.h"
-#include "pipeline/input/gltf_import.h"
 #include "pipeline/input/particle_files.h"
 #include "pipeline/input/presets.h"
 #include "pipeline/input/scene.h"
@@ -197,9 +197,10 @@ int gltf(const uint8_t* data, size_t size) {
                 if (q[c] >= m.positions.size()) finding("gltf", "an index past the vertices");
     });
     refused_cleanly("gltf", [&] {
-        const CameraTrack t = gltf_camera_track(*doc, "", 10.0, 16.0 / 9.0, 24.0, "s", "/p");
+        const CameraTrack t = gltf_camera_track(*doc, "", 10.0, 24.0, "s", "/p");
         for (const CameraKey& k : t.keys)
-            if (!finite(k.position) || !finite(k.look_at) || !finite(k.up) || !std::isfinite(k.time))
+            if (!finite(k.position) || !finite(k.look_at) || !finite(k.up) ||
+                !std::isfinite(k.time))
                 finding("gltf", "a camera key that is not finite");
     });
     return 0;
