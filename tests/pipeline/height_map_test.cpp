@@ -28,6 +28,19 @@ GridSurface ramp() {
     return g;
 }
 
+// An image of `channels` channels of `T` samples, all `value` but sample `odd` (if any), which
+// is `odd_value`: the files a height map must not be.
+template <class T>
+void write_image(const fs::path& path, int w, int h, int channels, OIIO::TypeDesc type, T value,
+                 int odd = -1, T odd_value = T()) {
+    std::vector<T> px(size_t(w) * h * channels, value);
+    if (odd >= 0) px[odd] = odd_value;
+    auto out = OIIO::ImageOutput::create(path.string());
+    ASSERT_TRUE(out && out->open(path.string(), OIIO::ImageSpec(w, h, channels, type)));
+    ASSERT_TRUE(out->write_image(type, px.data()));
+    out->close();
+}
+
 std::string error_of(const fs::path& file, double low = 0, double high = 1) {
     try {
         read_height_map(file, low, high, "scene.json", "/terrain/height_map/file");
@@ -92,27 +105,13 @@ TEST(HeightMap, BadFilesAreNamedWithWhatWasExpected) {
     EXPECT_NE(error_of(dir / "none.png").find("no height map file"), std::string::npos);
 
     // An 8-bit greyscale PNG: 256 heights terrace the ground.
-    {
-        OIIO::ImageSpec spec(4, 4, 1, OIIO::TypeDesc::UINT8);
-        std::vector<uint8_t> px(16, 7);
-        auto out = OIIO::ImageOutput::create((dir / "eight.png").string());
-        ASSERT_TRUE(out->open((dir / "eight.png").string(), spec));
-        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, px.data()));
-        out->close();
-    }
+    write_image<uint8_t>(dir / "eight.png", 4, 4, 1, OIIO::TypeDesc::UINT8, 7);
     EXPECT_NE(error_of(dir / "eight.png").find("expected 16-bit (PNG, TIFF) or float"),
               std::string::npos)
         << error_of(dir / "eight.png");
 
     // Three channels.
-    {
-        OIIO::ImageSpec spec(4, 4, 3, OIIO::TypeDesc::UINT16);
-        std::vector<uint16_t> px(48, 7);
-        auto out = OIIO::ImageOutput::create((dir / "rgb.png").string());
-        ASSERT_TRUE(out->open((dir / "rgb.png").string(), spec));
-        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT16, px.data()));
-        out->close();
-    }
+    write_image<uint16_t>(dir / "rgb.png", 4, 4, 3, OIIO::TypeDesc::UINT16, 7);
     EXPECT_NE(error_of(dir / "rgb.png").find("3 channels; expected one"), std::string::npos);
 
     // A truncated PNG.
@@ -123,28 +122,13 @@ TEST(HeightMap, BadFilesAreNamedWithWhatWasExpected) {
         << error_of(dir / "cut.png");
 
     // A NaN in an EXR, with its place.
-    {
-        OIIO::ImageSpec spec(3, 2, 1, OIIO::TypeDesc::FLOAT);
-        std::vector<float> px(6, 1.0f);
-        px[4] = std::nanf("");
-        auto out = OIIO::ImageOutput::create((dir / "nan.exr").string());
-        ASSERT_TRUE(out->open((dir / "nan.exr").string(), spec));
-        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, px.data()));
-        out->close();
-    }
+    write_image<float>(dir / "nan.exr", 3, 2, 1, OIIO::TypeDesc::FLOAT, 1.0f, 4, std::nanf(""));
     EXPECT_NE(error_of(dir / "nan.exr").find("column 1, row 1 is not a finite height"),
               std::string::npos)
         << error_of(dir / "nan.exr");
 
     // One sample a side is no grid.
-    {
-        OIIO::ImageSpec spec(1, 5, 1, OIIO::TypeDesc::UINT16);
-        std::vector<uint16_t> px(5, 7);
-        auto out = OIIO::ImageOutput::create((dir / "thin.png").string());
-        ASSERT_TRUE(out->open((dir / "thin.png").string(), spec));
-        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT16, px.data()));
-        out->close();
-    }
+    write_image<uint16_t>(dir / "thin.png", 1, 5, 1, OIIO::TypeDesc::UINT16, 7);
     EXPECT_NE(error_of(dir / "thin.png").find("is 1 x 5; expected 2 to 8193"), std::string::npos);
     fs::remove_all(dir);
 }
@@ -152,14 +136,7 @@ TEST(HeightMap, BadFilesAreNamedWithWhatWasExpected) {
 // Through the command: one line naming the scene, the key and the problem; exit 2; no image.
 TEST(HeightMap, ABadMapInASceneIsOneLineExitTwo) {
     const fs::path dir = test::temp_dir("height-map-cli");
-    {
-        OIIO::ImageSpec spec(4, 4, 1, OIIO::TypeDesc::UINT8);
-        std::vector<uint8_t> px(16, 7);
-        auto out = OIIO::ImageOutput::create((dir / "eight.png").string());
-        ASSERT_TRUE(out->open((dir / "eight.png").string(), spec));
-        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, px.data()));
-        out->close();
-    }
+    write_image<uint8_t>(dir / "eight.png", 4, 4, 1, OIIO::TypeDesc::UINT8, 7);
     std::ofstream(dir / "scene.json") << R"({"materials": {"grass": {"shader": "grass"}},
                "terrain": {"height_map": {"file": "eight.png", "high": 30}}})";
     const auto r = test::run_pleinair("render " + (dir / "scene.json").string() + " -o " +
