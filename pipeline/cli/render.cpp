@@ -1,7 +1,6 @@
 // The render command: scene file in, painted image out, with the shot's and the frame's plan
 // on request.
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -118,9 +117,7 @@ void export_height_map(const SceneDesc& scene, const std::string& source, const 
     double lo = 1e300, hi = -1e300;
     for (const glm::vec3& p : grid.positions)
         lo = std::min<double>(lo, p.y), hi = std::max<double>(hi, p.y);
-    std::string ext = path.extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    const bool exr = ext == ".exr";
+    const bool exr = lower_ext(path) == ".exr";
     if (fs::path parent = path.parent_path(); !parent.empty()) fs::create_directories(parent);
     write_height_map(path, grid, lo, hi);
     std::printf(

@@ -57,6 +57,12 @@ std::vector<Problem> first_per_key(std::vector<Problem> problems) {
 
 }  // namespace
 
+std::string first_line(std::string s) {
+    if (const size_t eol = s.find('\n'); eol != std::string::npos) s.resize(eol);
+    while (!s.empty() && (s.back() == ' ' || s.back() == '\r')) s.pop_back();
+    return s;
+}
+
 std::string format_problems(const std::string& source, const std::vector<Problem>& problems) {
     std::string s;
     for (const auto& p : problems) {

@@ -30,6 +30,10 @@ class InputError : public std::runtime_error {
 // holding a slash is not read as two keys.
 std::string pointer_token(const std::string& key);
 
+// A library's message cut to its first line (trailing spaces dropped): libraries report one
+// failure on several lines, and a problem is one.
+std::string first_line(std::string message);
+
 // "source: pointer: message" lines, the form every command prints on stderr. Control
 // characters (a key holding a newline) are printed escaped, so each problem stays one line.
 std::string format_problems(const std::string& source, const std::vector<Problem>& problems);

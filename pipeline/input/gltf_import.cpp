@@ -29,12 +29,6 @@ struct GltfDocument {
 
 namespace {
 
-std::string first_line(std::string s) {
-    if (const size_t eol = s.find('\n'); eol != std::string::npos) s.resize(eol);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\r')) s.pop_back();
-    return s;
-}
-
 // Images are not read: a scene takes geometry and cameras from a glTF file, never textures.
 bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int,
                 const unsigned char*, int, void*) {

@@ -43,11 +43,6 @@ std::string png_cut_short(const fs::path& path) {
     return "it ends before its IEND chunk (truncated)";
 }
 
-std::string first_line(std::string s) {
-    if (const size_t eol = s.find('\n'); eol != std::string::npos) s.resize(eol);
-    return s;
-}
-
 }  // namespace
 
 HeightMap read_height_map(const fs::path& path, double low, double high, const std::string& source,

@@ -605,6 +605,15 @@ std::string near_scene(const std::string& name, const std::string& source) {
     return (std::filesystem::path(source).parent_path() / p).string();
 }
 
+// A data file a scene names (a particle file, a height map, a glTF file): relative to the
+// scene's folder when the scene is a file.
+fs::path beside_scene(const std::string& name, const std::string& source) {
+    fs::path file(name);
+    if (file.is_relative() && source.ends_with(".json"))
+        file = fs::path(source).parent_path() / file;
+    return file;
+}
+
 // A family's or material's style: "strokes" (null), or a graftal description by name or file.
 std::shared_ptr<const GraftalDesc> load_style(const std::string& style, const std::string& source,
                                               const std::string& ptr,
@@ -891,17 +900,11 @@ void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
 
 // The glTF files read now: the meshes' triangles, and the camera's track.
 void load_gltf_files(const std::string& source, SceneDesc& s, std::vector<Problem>& problems) {
-    auto near = [&](const std::string& name) {
-        fs::path file(name);
-        if (file.is_relative() && source.ends_with(".json"))
-            file = fs::path(source).parent_path() / file;
-        return file;
-    };
     for (size_t i = 0; i < s.meshes.size(); ++i) {
         MeshFileDesc& m = s.meshes[i];
         const std::string ptr = "/meshes/" + std::to_string(i) + "/file";
         load_into(problems, source, ptr, [&] {
-            const auto doc = load_gltf(near(m.file), source, ptr);
+            const auto doc = load_gltf(beside_scene(m.file, source), source, ptr);
             std::vector<std::string> nodes;
             for (const std::string& n : split_names(m.nodes))
                 if (!n.empty()) nodes.push_back(n);
@@ -913,7 +916,7 @@ void load_gltf_files(const std::string& source, SceneDesc& s, std::vector<Proble
     if (!g.present) return;
     const std::string ptr = "/camera/gltf/file";
     load_into(problems, source, ptr, [&] {
-        const auto doc = load_gltf(near(g.file), source, ptr);
+        const auto doc = load_gltf(beside_scene(g.file, source), source, ptr);
         CameraTrack track = gltf_camera_track(*doc, g.camera, g.focus_distance, s.fps, source, ptr);
         if (track.keys.size() == 1) {
             // A camera that does not move is a still.
@@ -935,9 +938,7 @@ void load_gltf_files(const std::string& source, SceneDesc& s, std::vector<Proble
 void load_height_map(const std::string& source, SceneDesc& s, std::vector<Problem>& problems) {
     const HeightMapDesc& m = s.terrain.height_map;
     if (!s.terrain.present || !m.present) return;
-    fs::path file(m.file);
-    if (file.is_relative() && source.ends_with(".json"))
-        file = fs::path(source).parent_path() / file;
+    const fs::path file = beside_scene(m.file, source);
     load_into(problems, source, "/terrain/height_map/file", [&] {
         s.terrain.params.height_map = std::make_shared<const HeightMap>(
             read_height_map(file, m.low, m.high, source, "/terrain/height_map/file"));
@@ -950,9 +951,7 @@ void load_particle_files(const std::string& source, SceneDesc& s, std::vector<Pr
     for (size_t i = 0; i < s.particles.size(); ++i) {
         ParticleFileDesc& p = s.particles[i];
         const std::string ptr = "/particles/" + std::to_string(i) + "/file";
-        fs::path file(p.file);
-        if (file.is_relative() && source.ends_with(".json"))
-            file = fs::path(source).parent_path() / file;
+        const fs::path file = beside_scene(p.file, source);
         load_into(problems, source, ptr, [&] {
             const std::string data = read_input_file(file, "particle_file_mb");
             ImportedParticles in =

@@ -2,7 +2,6 @@
 #include "pipeline/output/height_map_writer.h"
 
 #include <algorithm>
-#include <cctype>
 #include <string>
 #include <vector>
 
@@ -14,9 +13,7 @@ namespace pleinair {
 namespace fs = std::filesystem;
 
 void write_height_map(const fs::path& path, const GridSurface& grid, double low, double high) {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return std::tolower(c); });
+    const std::string ext = lower_ext(path);
     const bool exr = ext == ".exr";
     if (!exr && ext != ".png" && ext != ".tif" && ext != ".tiff")
         throw InputError("-o", "", path.string() + ": a height map is .png, .tif or .exr");

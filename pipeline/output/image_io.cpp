@@ -28,12 +28,13 @@ namespace pleinair {
 
 namespace fs = std::filesystem;
 
-namespace {
 std::string lower_ext(const fs::path& p) {
     std::string e = p.extension().string();
     std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
     return e;
 }
+
+namespace {
 
 // Linear premultiplied over an opaque background: the colour is the premultiplied value.
 float channel(const Frame& f, size_t i, int c) {

@@ -13,6 +13,9 @@
 
 namespace pleinair {
 
+// The path's extension in lower case (".PNG" -> ".png").
+std::string lower_ext(const std::filesystem::path& path);
+
 // True for .png, .tif, .tiff and .exr (any case).
 bool is_image_path(const std::filesystem::path& path);
 // True for the extension of an image format pleinair does not write (.jpg, .bmp, .webp, ...):
