@@ -5,6 +5,8 @@ SHELL := /bin/bash
 BUILD ?= build
 SAN_BUILD ?= build-sanitize
 JOBS ?= $(shell nproc)
+# Extra ctest arguments for `make test` and `make test-sanitize` (CI: --output-junit FILE).
+CTEST_ARGS ?=
 DEPS := build-essential cmake ninja-build libopenmesh-dev libglm-dev libopenimageio-dev \
         openimageio-tools libembree-dev libtbb-dev nlohmann-json3-dev libcli11-dev \
         libgtest-dev libbenchmark-dev libhwy-dev libcairo2-dev pkg-config ffmpeg \
@@ -18,7 +20,7 @@ FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := tree_preset shader_preset palette scene set_value studio_request particle_file graftal \
                 imposter gltf
 
-.PHONY: all deps build render test test-sanitize test-farm test-studio test-clients fuzz bench format reference golden gallery clean
+.PHONY: all deps build build-sanitize build-fuzz render test test-sanitize test-farm test-studio test-clients fuzz bench format reference golden gallery clean
 
 all: build
 
@@ -48,7 +50,7 @@ render: build
 	$(BUILD)/pleinair render mortefontaine -o out/mortefontaine.png --explain
 
 test: build
-	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS)
 
 # Renders a small shot on a real one-node Slurm cluster that the test starts and stops (as root;
 # installs slurmctld, slurmd and munge if missing): tests/farm/test_farm.sh.
@@ -82,21 +84,25 @@ test-clients: build
 # and animate (OneFrame.RenderAndAnimatePaintTheSamePixelsForEveryShippedShot, which renders only
 # its middle frame alone when sanitized).
 SAN_SKIP := OneFrame\.(BenchesMeasureTheFramesRenderAndAnimatePaint|TheOpenSkyKeepsToItsPaletteInEveryShippedScene)|GoldenImages\.MatchTheirReferences
-test-sanitize: deps
+build-sanitize: deps
 	cmake -S . -B $(SAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	    -DPLEINAIR_SANITIZE=ON -DPLEINAIR_BENCH=OFF
 	cmake --build $(SAN_BUILD) -j $(JOBS)
-	cd $(SAN_BUILD) && ctest --output-on-failure -j $(JOBS) -E '$(SAN_SKIP)'
+
+test-sanitize: build-sanitize
+	cd $(SAN_BUILD) && ctest --output-on-failure -j $(JOBS) -E '$(SAN_SKIP)' $(CTEST_ARGS)
 
 # Every parser fuzzed with libFuzzer under ASan and UBSan (clang), FUZZ_SECONDS each, from the
 # committed seed corpus (new inputs go to a scratch folder, not the repository). A finding stops
 # with the input saved as $(FUZZ_BUILD)/finding-*; minimise it (-minimize_crash=1) and commit
 # it under tests/fuzz/regressions/TARGET/, where every test run replays it.
-fuzz: deps
+build-fuzz: deps
 	@dpkg-query -W -f='$${Status}\n' clang libfuzzer-14-dev 2>/dev/null | grep -c "install ok installed" | grep -q 2 || \
 	    { $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends clang libfuzzer-14-dev; }
 	CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPLEINAIR_FUZZ=ON
 	cmake --build $(FUZZ_BUILD) -j $(JOBS)
+
+fuzz: build-fuzz
 	@for t in $(FUZZ_TARGETS); do \
 	    mkdir -p $(FUZZ_BUILD)/corpus/$$t && \
 	    echo "fuzz $$t: $(FUZZ_SECONDS) s" && \
