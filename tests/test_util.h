@@ -12,6 +12,20 @@
 
 namespace pleinair::test {
 
+// Whether this build runs under AddressSanitizer (GCC says so by a macro, clang by a feature):
+// tests whose every repetition costs minutes there do less of it.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kAddressSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+inline constexpr bool kAddressSanitizer = true;
+#else
+inline constexpr bool kAddressSanitizer = false;
+#endif
+#else
+inline constexpr bool kAddressSanitizer = false;
+#endif
+
 std::filesystem::path source_dir();
 TreeParams preset(const std::string& name);
 std::vector<std::string> shipped_tree_presets();

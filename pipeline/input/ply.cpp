@@ -76,7 +76,7 @@ std::vector<std::string_view> words(std::string_view line) {
     return out;
 }
 
-std::string quoted(std::string_view s) {
+std::string in_quotes(std::string_view s) {
     std::string q(1, '"');
     q.append(s.substr(0, s.size() > 40 ? 37 : s.size()));
     q.append(s.size() > 40 ? "...\"" : "\"");
@@ -164,7 +164,7 @@ class Parser {
                     fail(at,
                          "expected \"format ascii|binary_little_endian|binary_big_endian "
                          "1.0\", got " +
-                             quoted(l));
+                             in_quotes(l));
                 if (w[1] == "ascii")
                     format_ = Format::kAscii;
                 else if (w[1] == "binary_little_endian")
@@ -172,7 +172,7 @@ class Parser {
                 else if (w[1] == "binary_big_endian")
                     format_ = Format::kBig;
                 else
-                    fail(at, "unknown format " + quoted(w[1]));
+                    fail(at, "unknown format " + in_quotes(w[1]));
                 have_format = true;
             } else if (w[0] == "element") {
                 uint64_t count = 0;
@@ -180,9 +180,9 @@ class Parser {
                     std::from_chars(w[2].data(), w[2].data() + w[2].size(), count).ptr !=
                         w[2].data() + w[2].size())
                     fail(at,
-                         "expected \"element NAME COUNT\" with a whole number, got " + quoted(l));
+                         "expected \"element NAME COUNT\" with a whole number, got " + in_quotes(l));
                 for (const Element& e : elements_)
-                    if (e.name == w[1]) fail(at, "a second element " + quoted(w[1]));
+                    if (e.name == w[1]) fail(at, "a second element " + in_quotes(w[1]));
                 elements_.push_back({std::string(w[1]), count, {}});
             } else if (w[0] == "property") {
                 if (elements_.empty()) fail(at, "a property before any element");
@@ -192,22 +192,22 @@ class Parser {
                     p.type = find_type(w[3]);
                     if (!p.count_type || !p.count_type->integer || !p.type)
                         fail(at,
-                             "expected \"property list INTEGER_TYPE TYPE NAME\", got " + quoted(l));
+                             "expected \"property list INTEGER_TYPE TYPE NAME\", got " + in_quotes(l));
                     p.name = w[4];
                 } else if (w.size() == 3) {
                     p.type = find_type(w[1]);
-                    if (!p.type) fail(at, "unknown property type " + quoted(w[1]));
+                    if (!p.type) fail(at, "unknown property type " + in_quotes(w[1]));
                     p.name = w[2];
                 } else {
-                    fail(at, "expected \"property TYPE NAME\", got " + quoted(l));
+                    fail(at, "expected \"property TYPE NAME\", got " + in_quotes(l));
                 }
                 for (const Property& q : elements_.back().properties)
                     if (q.name == p.name)
-                        fail(at, "a second property " + quoted(p.name) + " in element " +
-                                     quoted(elements_.back().name));
+                        fail(at, "a second property " + in_quotes(p.name) + " in element " +
+                                     in_quotes(elements_.back().name));
                 elements_.back().properties.push_back(p);
             } else {
-                fail(at, "unknown header keyword " + quoted(w[0]));
+                fail(at, "unknown header keyword " + in_quotes(w[0]));
             }
         }
         if (!have_format) fail("", "the header has no format line");
@@ -238,16 +238,16 @@ class Parser {
                                          " elements (a truncated file, or a wrong count)");
             auto [ptr, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), v);
             if (ec == std::errc::result_out_of_range && ptr == tok.data() + tok.size())
-                fail(where(e, i, p), "not a finite number (" + quoted(tok) + " is out of range)");
+                fail(where(e, i, p), "not a finite number (" + in_quotes(tok) + " is out of range)");
             if (ec != std::errc() || ptr != tok.data() + tok.size())
                 fail(where(e, i, p),
-                     "expected a number (" + std::string(t.name) + "), got " + quoted(tok));
+                     "expected a number (" + std::string(t.name) + "), got " + in_quotes(tok));
             if (t.integer) {
                 const double lo = t.is_signed ? -std::ldexp(1.0, t.size * 8 - 1) : 0.0;
                 const double hi = std::ldexp(1.0, t.size * 8 - (t.is_signed ? 1 : 0)) - 1;
                 if (!(v == std::floor(v) && v >= lo && v <= hi))
                     fail(where(e, i, p), "expected a whole number that fits " +
-                                             std::string(t.name) + ", got " + quoted(tok));
+                                             std::string(t.name) + ", got " + in_quotes(tok));
             }
         } else {
             if (bytes_.size() - pos_ < static_cast<size_t>(t.size))
@@ -336,7 +336,7 @@ class Parser {
                 fail("element vertex", "more values follow the " + std::to_string(e.count) +
                                            " vertices the header promises (a wrong count), "
                                            "starting with " +
-                                           quoted(tok));
+                                           in_quotes(tok));
         } else if (pos_ < bytes_.size()) {
             fail("element vertex", std::to_string(bytes_.size() - pos_) + " bytes follow the " +
                                        std::to_string(e.count) +

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <glm/geometric.hpp>
+#include <thread>
 
 #include "tests/test_util.h"
 
@@ -57,6 +58,35 @@ TEST(Wind, ThePoseAtATimeIsTheSameInAnyOrder) {
     // The flutter of a leaf is its own and moves with time.
     EXPECT_NE(leaf_flutter(forward[1], 0.25f), leaf_flutter(forward[1], 0.75f));
     EXPECT_NE(leaf_flutter(forward[1], 0.25f), leaf_flutter(forward[2], 0.25f));
+}
+
+// Each tree's phases are its own, from its seed alone: a pose is the same whether its thread
+// posed other trees before it or none (a memo kept per thread would hand the second tree the
+// first one's phase), and two trees in the same wind do not sway in step.
+TEST(Wind, EachTreesPhaseIsItsOwnWhateverItsThreadPosedBefore) {
+    const Posed& w = willow();
+    const WindStiffness st;
+    auto at = [](uint64_t seed) {
+        WindAtTree a = wind(6, 1.3);
+        a.seed = seed;
+        return a;
+    };
+    TreePose alone, after_other, other;
+    std::thread([&] { alone = pose_tree(w.tree, w.rig, st, at(202), {}); }).join();
+    std::thread([&] {
+        other = pose_tree(w.tree, w.rig, st, at(101), {});
+        after_other = pose_tree(w.tree, w.rig, st, at(202), {});
+    }).join();
+    ASSERT_FALSE(alone.at_rest());
+    EXPECT_TRUE(same_bits(alone, after_other)) << "a pose depends on what its thread posed before";
+    EXPECT_FALSE(same_bits(alone, other)) << "two trees' seeds, one sway";
+    // And in the same thread, the first seed's pose again after the second's.
+    TreePose again;
+    std::thread([&] {
+        pose_tree(w.tree, w.rig, st, at(202), {});
+        again = pose_tree(w.tree, w.rig, st, at(101), {});
+    }).join();
+    EXPECT_TRUE(same_bits(other, again));
 }
 
 TEST(Wind, GustsAndWavesHaveNoJump) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -195,6 +196,20 @@ TEST(GltfImport, BadFilesAreNamedWithTheirPlace) {
             << read(dir / "past.glb");
     }
     {
+        // An accessor whose last element starts inside its view but ends past it: the view's
+        // 48 bytes hold four positions, and the accessor starts 4 bytes in.
+        Fixture fx;
+        tinygltf::Model& m = fx.g.model();
+        tinygltf::Accessor& pos = m.accessors[m.meshes[0].primitives[0].attributes["POSITION"]];
+        ASSERT_EQ(m.bufferViews[pos.bufferView].byteLength, 48u);
+        pos.byteOffset = 4;
+        EXPECT_NE(read(fx.write(dir, "last.glb")).find("4 elements run past the end of its view"),
+                  std::string::npos)
+            << read(dir / "last.glb");
+        pos.byteOffset = 0;  // and one that ends where its view does is read
+        EXPECT_EQ(read(fx.write(dir, "whole.glb")), "");
+    }
+    {
         Fixture fx;  // a NaN vertex
         tinygltf::Model& m = fx.g.model();
         const int pos = m.meshes[0].primitives[0].attributes["POSITION"];
@@ -272,8 +287,8 @@ const char* kExportScene = R"({
   "terrain": {"min": [-40, -40], "max": [40, 40], "resolution": 17},
   "rocks": [{"position": [5, 0, 5], "radius": 1.5}],
   "families": {"shrubs": {"preset": "shrub", "members": 2}, "birch": {"preset": "birch"}},
-  "trees": [{"family": "shrubs", "position": [-6, 0, 0], "seed": 1},
-            {"family": "shrubs", "position": [-3, 0, 2], "seed": 2},
+  "trees": [{"family": "shrubs", "position": [-6, 0, 0], "seed": 1, "rotation": -120},
+            {"family": "shrubs", "position": [-3, 0, 2], "seed": 2, "rotation": 30},
             {"family": "shrubs", "position": [0, 0, 4], "seed": 3},
             {"family": "shrubs", "position": [3, 0, 2], "seed": 4, "rotation": 90, "scale": 1.5},
             {"family": "birch", "position": [8, 0, -4], "seed": 5}]
@@ -359,6 +374,86 @@ TEST(GltfExport, NodesInstancingGivesEachTreeANodeOverItsMembersMesh) {
             EXPECT_EQ(n.scale, std::vector<double>(3, 1.5));
         }
     fs::remove_all(dir);
+}
+
+// An accessor of floats (`n` an element) read back from the model's buffer.
+std::vector<float> floats_of(const tinygltf::Model& m, int accessor, int n) {
+    const tinygltf::Accessor& a = m.accessors.at(static_cast<size_t>(accessor));
+    const tinygltf::BufferView& v = m.bufferViews.at(static_cast<size_t>(a.bufferView));
+    const size_t stride = v.byteStride ? v.byteStride : sizeof(float) * size_t(n);
+    std::vector<float> out(a.count * size_t(n));
+    for (size_t i = 0; i < a.count; ++i)
+        std::memcpy(&out[i * size_t(n)],
+                    m.buffers.at(size_t(v.buffer)).data.data() + v.byteOffset + a.byteOffset +
+                        i * stride,
+                    sizeof(float) * size_t(n));
+    return out;
+}
+
+// A tree's placement as an exported file gives it: translation, turn and scale.
+struct GltfPlacement {
+    glm::dvec3 at{0.0};
+    glm::dquat turn{1, 0, 0, 0};
+    glm::dvec3 scale{1.0};
+};
+
+// Every tree's placement in an exported model: each EXT_mesh_gpu_instancing instance and each
+// tree's own node.
+std::vector<GltfPlacement> exported_placements(const tinygltf::Model& m) {
+    std::vector<GltfPlacement> found;
+    for (const tinygltf::Node& n : m.nodes) {
+        if (auto it = n.extensions.find("EXT_mesh_gpu_instancing"); it != n.extensions.end()) {
+            const tinygltf::Value& at = it->second.Get("attributes");
+            const std::vector<float> t = floats_of(m, at.Get("TRANSLATION").GetNumberAsInt(), 3);
+            const std::vector<float> r = floats_of(m, at.Get("ROTATION").GetNumberAsInt(), 4);
+            const std::vector<float> s = floats_of(m, at.Get("SCALE").GetNumberAsInt(), 3);
+            for (size_t k = 0; k < t.size() / 3; ++k)
+                found.push_back({{t[3 * k], t[3 * k + 1], t[3 * k + 2]},
+                                 glm::dquat(r[4 * k + 3], r[4 * k], r[4 * k + 1], r[4 * k + 2]),
+                                 {s[3 * k], s[3 * k + 1], s[3 * k + 2]}});
+        } else if (n.name.rfind("tree-", 0) == 0 && n.name.find("_LOD0") != std::string::npos) {
+            GltfPlacement f;
+            f.at = {n.translation.at(0), n.translation.at(1), n.translation.at(2)};
+            if (n.rotation.size() == 4)
+                f.turn = glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
+            if (n.scale.size() == 3) f.scale = {n.scale[0], n.scale[1], n.scale[2]};
+            found.push_back(f);
+        }
+    }
+    return found;
+}
+
+// Every exported tree, placed by its instance or its node, turns and scales its member's points
+// as pleinair's own placement does (glTF's quaternion read as the specification says): the
+// validator checks only the form, and Blender reads only the node-per-tree variant.
+TEST(GltfExport, EveryTreeIsTurnedAsPleinairTurnsIt) {
+    for (const Instancing instancing : {Instancing::kGpu, Instancing::kNodes}) {
+        SCOPED_TRACE(instancing == Instancing::kGpu ? "instances" : "nodes");
+        const fs::path dir = test::temp_dir("gltf-export-turns");
+        const Exported e = export_scene(dir, instancing);
+        const std::vector<GltfPlacement> found = exported_placements(e.model);
+        ASSERT_EQ(found.size(), e.trees.size());
+        size_t turned = 0;
+        for (const BuiltTree& b : e.trees) {
+            SCOPED_TRACE("tree " + std::to_string(b.id));
+            const TreePlacement pl = placement(b);
+            auto it = std::find_if(found.begin(), found.end(), [&](const GltfPlacement& f) {
+                return glm::length(f.at - b.position) < 1e-5;
+            });
+            ASSERT_NE(it, found.end());
+            turned += std::abs(pl.s) > 0.1;
+            for (const glm::dvec3 p : {glm::dvec3(1, 0, 0), glm::dvec3(0, 0, 1),
+                                       glm::dvec3(0.3, 2, -0.7)}) {
+                const glm::dvec3 want = pl.linear() * p, got = it->turn * (it->scale * p);
+                EXPECT_LT(glm::length(got - want), 1e-5)
+                    << "(" << p.x << ", " << p.y << ", " << p.z << ") goes to (" << got.x << ", "
+                    << got.y << ", " << got.z << "), not (" << want.x << ", " << want.y << ", "
+                    << want.z << ")";
+            }
+        }
+        EXPECT_GE(turned, 3u);  // three shrubs are turned, two of them drawn from one member
+        fs::remove_all(dir);
+    }
 }
 
 }  // namespace

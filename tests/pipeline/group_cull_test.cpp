@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <random>
 
 #include "pipeline/frame/frame_plan.h"
@@ -94,6 +95,55 @@ TEST(GroupCulling, NeverDropsAStrokeThatParticleCullingDraws) {
     // The test means something: clusters were culled whole, and sprites were drawn.
     EXPECT_GT(grouped, 10000u);
     EXPECT_GT(drawn, 10000u);
+}
+
+// Where the frame's edge cuts a crown, a gust blows strokes into view from clusters that lie
+// off screen at rest: their bounds widen by the wind's reach, or those strokes are lost. The
+// willow in a strong wind, the camera turned step by step so the frame's edge sweeps the crown
+// (at 480x270 a step moves the edge by a few pixels; at 160x90 no stroke crosses it).
+TEST(GroupCulling, WindBlowsStrokesIntoViewFromClustersOffScreenAtRest) {
+    const Shot shot =
+        build_shot(load_scene(test::source_dir() / "presets" / "scenes" / "willow-gust.json",
+                              {"/camera/width=480", "/camera/height=270",
+                               R"(/wind/track=[{"time": 0, "strength": 20},
+                                               {"time": 8, "strength": 20}])"}));
+    ASSERT_TRUE(shot.plan.wind);
+    ASSERT_EQ(shot.clusters.size(), 1u);
+    const ItemClusters& ic = shot.clusters[0];
+    std::map<uint64_t, size_t> cluster_of;  // particle key -> its cluster
+    for (size_t k = 0; k < ic.clusters.size(); ++k)
+        for (uint32_t i = ic.clusters[k].first; i < ic.clusters[k].first + ic.clusters[k].count;
+             ++i)
+            cluster_of[particle_key(0, ic.clusters[k].kind, ic.order[i])] = k;
+    const FrameSettings fs = scene_frame_settings(shot.scene);
+    uint64_t grouped = 0, blown_in = 0;
+    // The willow's upwind side leaving the frame's left edge (the wind blows it back in), then a
+    // view turned away from it.
+    std::vector<glm::dvec3> looks;
+    for (double x = 14.0; x <= 30.0; x += 0.25) looks.emplace_back(x, 5.8, 0.0);
+    looks.emplace_back(0.0, 3.0, 60.0);
+    for (const glm::dvec3& look : looks) {
+        SCOPED_TRACE(look.x);
+        FrameView view = view_at(shot.scene, 2.5);
+        CameraParams p = shot.scene.camera_params;
+        p.look_at = look;
+        ASSERT_EQ(make_camera(p, view.camera), "");
+        const SpriteSet by_group = sprites_of(shot, view, fs, true);
+        const SpriteSet each = sprites_of(shot, view, fs, false);
+        expect_same_sprites(by_group, each);
+        grouped += by_group.grouped;
+        // The strokes the case is about: drawn, from a cluster that lies off screen at rest.
+        const FrameLod lod = level_of_detail(shot, view, fs.render);
+        for (const Sprite& sp : each.sprites)
+            blown_in += cluster_fate(shot, lod, view.camera, fs.render, 0,
+                                     ic.clusters[cluster_of.at(sprite_key(sp))],
+                                     0.0) != ClusterFate::kShown;
+    }
+    // The test means something: clusters were culled whole (the view turned away), and strokes
+    // did blow into view.
+    EXPECT_GE(grouped, ic.order.size());
+    EXPECT_GT(blown_in, 0u);
+    RecordProperty("blown_in", static_cast<int>(blown_in));
 }
 
 TEST(GroupCulling, ClustersHoldEveryParticleOnce) {

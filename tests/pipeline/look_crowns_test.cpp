@@ -191,3 +191,46 @@ TEST(Look, SmoothShareCountsOnlyPaintWithoutMarks) {
 
 }  // namespace
 }  // namespace pleinair
+
+namespace pleinair {
+namespace {
+
+// The open sky's palette check (OneFrame.TheOpenSkyKeepsToItsPaletteInEveryShippedScene) guards
+// every shipped scene's sky; here it is held to colours with a known answer: a pixel is outside
+// when any channel lies beyond the gamut widened by the margin, below or above, and only pixels
+// of the mask count.
+TEST(OpenSky, PixelsOutsideThePaletteAreCountedChannelByChannel) {
+    SceneDesc scene;
+    scene.background.sky_zenith = Color(0.40f, 0.50f, 0.60f);
+    scene.background.sky_horizon = Color(0.70f, 0.80f, 0.90f);
+    scene.sky.present = false;
+    const SkyGamut g = sky_gamut(scene);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_FLOAT_EQ(g.lo[c], 0.40f + 0.1f * c);
+        EXPECT_FLOAT_EQ(g.hi[c], 0.70f + 0.1f * c);
+    }
+    // sRGB colours, one a pixel, written as the painter does (linear, premultiplied, opaque).
+    const std::vector<Color> srgb = {
+        {0.55f, 0.65f, 0.75f},  // inside
+        {0.00f, 0.00f, 0.00f},  // black: below in every channel
+        {0.55f, 0.65f, 0.96f},  // above in blue alone, by 0.06
+        {0.55f, 0.43f, 0.75f},  // below in green alone, by 0.07
+        {0.39f, 0.81f, 0.91f},  // within a margin of 0.02 in every channel
+        {0.00f, 0.00f, 0.00f},  // black, but not in the mask
+    };
+    Frame f;
+    f.width = static_cast<int>(srgb.size()), f.height = 1;
+    for (const Color& c : srgb) {
+        const Color lin = srgb_to_linear(c);
+        f.rgba.insert(f.rgba.end(), {lin.x, lin.y, lin.z, 1.0f});
+    }
+    const std::vector<uint8_t> mask = {1, 1, 1, 1, 1, 0};
+    EXPECT_EQ(pixels_outside(f, mask, g, 0.02f), 3u);
+    EXPECT_EQ(pixels_outside(f, mask, g, 0.065f), 2u);  // the blue one is inside now
+    EXPECT_EQ(pixels_outside(f, mask, g, 0.5f), 1u);    // black lies 0.6 below the least blue
+    EXPECT_EQ(pixels_outside(f, mask, g, 0.0f), 4u);
+    EXPECT_EQ(pixels_outside(f, std::vector<uint8_t>(srgb.size(), 0), g, 0.0f), 0u);
+}
+
+}  // namespace
+}  // namespace pleinair

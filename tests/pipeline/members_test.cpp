@@ -165,6 +165,48 @@ TEST(Members, InstancedCastersShadeAsCardsPlacedInTheWorld) {
     }
 }
 
+// The shot's own sun scene (build_sun_scene, as render and animate build it) shades like the
+// same cards and limbs built in the world, tree by tree: every tree of the row is turned its
+// own way, so a caster instance placed without its tree's turn leaves the shade elsewhere.
+TEST(Members, TheShotsSunSceneTurnsEachTreesCardsWithIt) {
+    const Shot shot = build_shot(parse_scene(row_scene(5, 2), "row.json"));
+    ASSERT_TRUE(shot.sun_rays) << "a still sun: the shot builds its sun scene once";
+    const glm::vec3 dir = glm::normalize(glm::vec3(shot.scene.sun_direction));
+    const std::vector<BuiltTree>& trees = *shot.trees;
+    RayScene world(shot.anchor, shot.limbs.get());
+    if (shot.land->has_terrain) world.add_mesh(shot.land->terrain_mesh);
+    for (const auto& r : shot.land->rocks) world.add_mesh(r);
+    std::vector<std::vector<StrokeCaster>> cards(shot.scene.families.size());
+    for (size_t i = 0; i < trees.size(); ++i) {
+        world.add_instance(shot.limb_mesh[i], shot.placements[i].linear(),
+                           shot.placements[i].position);
+        for (const StrokeCaster& c : leaf_casters(shot.scene, trees[i], dir))
+            cards[trees[i].family].push_back(c);
+    }
+    for (size_t f = 0; f < cards.size(); ++f)
+        world.add_casters(cards[f], shot.scene.families[f].leaf_shader,
+                          shot.materials[shot.materials.leaf(uint32_t(f))].edge);
+    world.commit();
+    EXPECT_EQ(shot.sun_rays->caster_count(), world.caster_count());
+    double sum = 0, shade = 0;
+    size_t n = 0;
+    for (size_t i = 0; i < trees.size(); ++i) {
+        const LeafParticles& L = trees[i].tree().leaves;
+        for (size_t j = 0; j < L.size(); j += 7)
+            for (const bool ground : {false, true}) {
+                glm::dvec3 o = shot.placements[i].place(L.position[j]);
+                if (ground) o.y = 0.0;
+                const float a = shot.sun_rays->transmittance(o, dir, ShadowMode::kTransmissive);
+                const float b = world.transmittance(o, dir, ShadowMode::kTransmissive);
+                sum += std::abs(a - b), shade += 1.0 - b, ++n;
+            }
+    }
+    ASSERT_GT(n, 100u);
+    EXPECT_GT(shade / double(n), 0.5);  // the crowns do shade
+    // The same light but for float rounding (as the instancing test above: mean 7e-7).
+    EXPECT_LT(sum / double(n), 1e-5);
+}
+
 TEST(Members, AnInstanceFarFromTheOriginPaintsAsOneAtTheOriginMoved) {
     const std::vector<uint8_t> here = frame_srgb8(paint_still(parse_scene(row_scene(3, 1), "r")));
     const glm::dvec3 far(4.0e4, 0, -3.0e4);

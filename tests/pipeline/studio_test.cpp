@@ -12,6 +12,7 @@
 #include "pipeline/input/draft.h"
 #include "pipeline/input/error.h"
 #include "pipeline/studio/server.h"
+#include "pipeline/studio/studio_request.h"
 #include "pipeline/studio/workspace.h"
 #include "test_util.h"
 
@@ -237,6 +238,55 @@ TEST(Studio, RequestsFromElsewhereAreRefused) {
     EXPECT_FALSE(studio_request_allowed(allowed, "127.0.0.1:8420", "http://evil.example", ""));
     EXPECT_FALSE(studio_request_allowed(allowed, "127.0.0.1:8420", "null", ""));
     EXPECT_FALSE(studio_request_allowed(allowed, "127.0.0.1:8420", "", "cross-site"));
+    // An origin is the whole of it, not a prefix: a site whose name begins with ours, another
+    // port, https, a user part, a path.
+    for (const char* origin :
+         {"http://127.0.0.1:8420.evil.example", "http://127.0.0.1:84201", "https://127.0.0.1:8420",
+          "http://127.0.0.1:8420@evil.example", "http://127.0.0.1:8420/", "http://127.0.0.1",
+          "http://127.0.0.1:842"}) {
+        EXPECT_FALSE(studio_request_allowed(allowed, "127.0.0.1:8420", origin, "")) << origin;
+    }
+    // Nor is the host: a longer name that starts with an allowed one.
+    EXPECT_FALSE(studio_request_allowed(allowed, "127.0.0.1:8420.evil.example", "", ""));
+    EXPECT_FALSE(studio_request_allowed(allowed, "localhost:84200", "", ""));
+}
+
+// A file is readable when it lies in a readable folder, path element by element: a folder
+// beside it whose name begins with the same letters is elsewhere.
+TEST(Studio, AFolderWhoseNameBeginsWithAReadableOnesIsNotReadable) {
+    const fs::path dir = test::temp_dir("studio-within");
+    fs::create_directories(dir / "presets" / "trees");
+    fs::create_directories(dir / "presets-evil");
+    fs::create_directories(dir / "scene");
+    std::ofstream(dir / "presets" / "trees" / "a.json") << "{}";
+    std::ofstream(dir / "presets-evil" / "b.json") << "{}";
+    const std::vector<fs::path> readable = {dir / "presets"};
+    auto refused = [&](const std::string& file) {
+        try {
+            parse_studio_change(R"({"set": {"/families/tree/preset": ")" + file + R"("}})",
+                                readable, dir / "scene");
+        } catch (const RequestRefused&) {
+            return true;
+        }
+        return false;
+    };
+    EXPECT_FALSE(refused((dir / "presets" / "trees" / "a.json").string()));
+    EXPECT_FALSE(refused("../presets/trees/a.json"));
+    EXPECT_TRUE(refused((dir / "presets-evil" / "b.json").string()));
+    EXPECT_TRUE(refused("../presets-evil/b.json"));
+    EXPECT_TRUE(refused((dir / "presetsb.json").string()));
+    EXPECT_TRUE(refused((dir / "presets" / ".." / "presets-evil" / "b.json").string()));
+    // A readable folder named with a trailing separator is the same folder.
+    const std::vector<fs::path> slash = {(dir / "presets").string() + "/"};
+    EXPECT_THROW(parse_studio_change(R"({"set": {"/families/tree/preset": ")" +
+                                         (dir / "presets-evil" / "b.json").string() + R"("}})",
+                                     slash, dir / "scene"),
+                 RequestRefused);
+    EXPECT_NO_THROW(parse_studio_change(R"({"set": {"/families/tree/preset": ")" +
+                                            (dir / "presets" / "trees" / "a.json").string() +
+                                            R"("}})",
+                                        slash, dir / "scene"));
+    fs::remove_all(dir);
 }
 
 TEST(Studio, TheServerRoutesAndLimits) {

@@ -107,6 +107,35 @@ TEST(WindFrame, StrokesMoveNoFartherThanTheReachAndKeepTheirNoise) {
     EXPECT_GT(moved, matched / 4);
 }
 
+// The wind's direction is the world's: a tree turned by its placement is posed in its own
+// frame by the inverse of that turn, so its leaves move downwind on screen whichever way it
+// was planted (turned by the placement's own rotation, a tree turned a quarter would lean
+// across the wind, and one turned a half into it).
+TEST(WindFrame, ATurnedTreeBendsDownwindInTheWorld) {
+    for (const char* rotation : {"0", "90", "200", "-65"}) {
+        SCOPED_TRACE(std::string("rotation ") + rotation);
+        const Shot shot = build_shot(willow_gust({std::string("/trees/0/rotation=") + rotation}));
+        const double t = 2.5;
+        const FrameWind fw = frame_wind(shot, t, FrameLod{});
+        ASSERT_TRUE(fw.on);
+        const glm::dvec3 downwind = wind_at(shot.scene.wind, t).direction;
+        ASSERT_NEAR(glm::length(downwind), 1.0, 1e-9);
+        const LeafParticles& L = (*shot.trees)[0].tree().leaves;
+        glm::dvec3 sum(0.0);
+        size_t moved = 0;
+        for (size_t j = 0; j < L.size(); ++j) {
+            const WindMove m = wind_move(shot, fw, 0, true, j, L.position[j], L.label[j]);
+            sum += m.delta, moved += m.moved;
+        }
+        ASSERT_GT(moved, L.size() / 2);
+        const glm::dvec3 mean = sum / double(L.size());
+        ASSERT_GT(glm::length(mean), 0.01);  // metres: the gust does move the crown
+        // Downwind within about 45 degrees (the limbs' sway across the wind is a third of it).
+        EXPECT_GT(glm::dot(mean, downwind), 0.7 * glm::length(mean))
+            << "mean move " << mean.x << ", " << mean.y << ", " << mean.z;
+    }
+}
+
 std::vector<std::string> scene_problems(const std::vector<std::string>& sets) {
     try {
         willow_gust(sets);
