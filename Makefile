@@ -13,12 +13,14 @@ DEPS := build-essential cmake ninja-build libopenmesh-dev libglm-dev libopenimag
         libcpp-httplib-dev libtinygltf-dev
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-# Seconds each fuzz target runs in `make fuzz` (CI: 20 s each of the ten, two at once).
+FUZZ_BUILD ?= build-fuzz
+# Seconds each fuzz target runs in `make fuzz` (CI: 20 s each of the ten, to keep its run under an
+# hour).
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := tree_preset shader_preset palette scene set_value studio_request particle_file graftal \
                 imposter gltf
 
-.PHONY: all deps configure build build-sanitize render test test-sanitize test-farm test-studio test-clients fuzz bench format reference golden gallery clean
+.PHONY: all deps configure build build-sanitize build-fuzz render test test-sanitize test-farm test-studio test-clients fuzz bench format reference golden gallery clean
 
 all: build
 
@@ -83,26 +85,37 @@ test-clients: build
 # through render and animate (ShippedScene.PaintsOneFrameWhicheverCommandPaintsIt, which
 # compares only the middle frame when sanitized and leaves the preview, the benches and the
 # stills to the plain build).
-# One build, by clang, serves these tests and the fuzzers (`make fuzz`): everything in it is
-# instrumented for libFuzzer's coverage too (CMakeLists.txt, PLEINAIR_FUZZ).
 SAN_SKIP := GoldenImages\.MatchTheirReferences
 build-sanitize: deps
-	@dpkg-query -W -f='$${Status}\n' clang libfuzzer-14-dev 2>/dev/null | grep -c "install ok installed" | grep -q 2 || \
-	    { $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends clang libfuzzer-14-dev; }
-	CXX=clang++ cmake -S . -B $(SAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	    -DPLEINAIR_SANITIZE=ON -DPLEINAIR_FUZZ=ON
+	cmake -S . -B $(SAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	    -DPLEINAIR_SANITIZE=ON -DPLEINAIR_BENCH=OFF
 	cmake --build $(SAN_BUILD) -j $(JOBS)
 
 test-sanitize: build-sanitize
 	cd $(SAN_BUILD) && ctest --output-on-failure -j $(JOBS) -E '$(SAN_SKIP)' $(CTEST_ARGS)
 
-# Every parser fuzzed with libFuzzer under ASan and UBSan (clang), FUZZ_SECONDS each, JOBS at
-# once (tools/ci/fuzz.sh), from the committed seed corpus (new inputs go to a scratch folder, not
-# the repository). A finding fails the run with the input saved as $(SAN_BUILD)/finding-*;
-# minimise it (-minimize_crash=1) and commit it under tests/fuzz/regressions/TARGET/, where every
-# test run replays it.
-fuzz: build-sanitize
-	tools/ci/fuzz.sh $(abspath $(SAN_BUILD)) $(FUZZ_SECONDS) $(JOBS) $(FUZZ_TARGETS)
+# Every parser fuzzed with libFuzzer under ASan and UBSan (clang), FUZZ_SECONDS each, from the
+# committed seed corpus (new inputs go to a scratch folder, not the repository). A finding stops
+# with the input saved as $(FUZZ_BUILD)/finding-*; minimise it (-minimize_crash=1) and commit
+# it under tests/fuzz/regressions/TARGET/, where every test run replays it.
+build-fuzz: deps
+	@dpkg-query -W -f='$${Status}\n' clang libfuzzer-14-dev 2>/dev/null | grep -c "install ok installed" | grep -q 2 || \
+	    { $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends clang libfuzzer-14-dev; }
+	CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPLEINAIR_FUZZ=ON
+	cmake --build $(FUZZ_BUILD) -j $(JOBS)
+
+fuzz: build-fuzz
+	@for t in $(FUZZ_TARGETS); do \
+	    mkdir -p $(FUZZ_BUILD)/corpus/$$t && \
+	    echo "fuzz $$t: $(FUZZ_SECONDS) s" && \
+	    PLEINAIR_PRESETS=$(abspath presets) $(FUZZ_BUILD)/tests/fuzz/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) \
+	        -max_len=65536 -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 \
+	        -artifact_prefix=$(FUZZ_BUILD)/finding-$$t- \
+	        $(FUZZ_BUILD)/corpus/$$t tests/fuzz/corpus/$$t \
+	        $$( [ -d tests/fuzz/regressions/$$t ] && echo tests/fuzz/regressions/$$t ) \
+	        2>&1 | grep -E "^(stat::|==|fuzz finding|SUMMARY|Done|#[0-9]+ *DONE)" ; \
+	    test $${PIPESTATUS[0]} -eq 0 || exit 1; \
+	done
 
 # The Google Benchmark programs in $(BUILD)/tests (pleinair_bench_*) are built on request.
 bench: configure
