@@ -110,6 +110,18 @@ TEST(Members, InstancedTreesPaintAsTheSameTreesGrownOneByOne) {
     EXPECT_GT(dark, a.size() / 3 / 20);
 }
 
+// Every tree's leaf cards turned to the sun `dir` and placed in the world (leaf_casters), one
+// caster set a family: what the shot's instanced casters are held to.
+void add_world_cards(const Shot& shot, const glm::vec3& dir, RayScene& world) {
+    std::vector<std::vector<StrokeCaster>> cards(shot.scene.families.size());
+    for (const BuiltTree& tree : *shot.trees)
+        for (const StrokeCaster& c : leaf_casters(shot.scene, tree, dir))
+            cards[tree.family].push_back(c);
+    for (size_t f = 0; f < cards.size(); ++f)
+        world.add_casters(cards[f], shot.scene.families[f].leaf_shader,
+                          shot.materials[shot.materials.leaf(uint32_t(f))].edge);
+}
+
 // The sun's leaf casters are each member's cards, placed by an instance per tree and turned to
 // the sun as the ray sees them: they shade as the same cards built in the world, tree by tree.
 TEST(Members, InstancedCastersShadeAsCardsPlacedInTheWorld) {
@@ -120,16 +132,10 @@ TEST(Members, InstancedCastersShadeAsCardsPlacedInTheWorld) {
         const glm::vec3 dir = glm::normalize(sun);
         const std::vector<BuiltTree>& trees = *shot.trees;
         RayScene instanced(shot.anchor, shot.limbs.get()), world(shot.anchor);
-        std::vector<std::vector<StrokeCaster>> cards(shot.scene.families.size());
-        for (size_t i = 0; i < trees.size(); ++i) {
+        for (size_t i = 0; i < trees.size(); ++i)
             instanced.add_caster_instance(shot.limb_mesh[i], shot.placements[i].linear(),
                                           shot.placements[i].position);
-            for (const StrokeCaster& c : leaf_casters(shot.scene, trees[i], dir))
-                cards[trees[i].family].push_back(c);
-        }
-        for (size_t f = 0; f < cards.size(); ++f)
-            world.add_casters(cards[f], shot.scene.families[f].leaf_shader,
-                              shot.materials[shot.materials.leaf(uint32_t(f))].edge);
+        add_world_cards(shot, dir, world);
         instanced.commit();
         world.commit();
         EXPECT_EQ(instanced.caster_count(), world.caster_count());
@@ -176,16 +182,10 @@ TEST(Members, TheShotsSunSceneTurnsEachTreesCardsWithIt) {
     RayScene world(shot.anchor, shot.limbs.get());
     if (shot.land->has_terrain) world.add_mesh(shot.land->terrain_mesh);
     for (const auto& r : shot.land->rocks) world.add_mesh(r);
-    std::vector<std::vector<StrokeCaster>> cards(shot.scene.families.size());
-    for (size_t i = 0; i < trees.size(); ++i) {
+    for (size_t i = 0; i < trees.size(); ++i)
         world.add_instance(shot.limb_mesh[i], shot.placements[i].linear(),
                            shot.placements[i].position);
-        for (const StrokeCaster& c : leaf_casters(shot.scene, trees[i], dir))
-            cards[trees[i].family].push_back(c);
-    }
-    for (size_t f = 0; f < cards.size(); ++f)
-        world.add_casters(cards[f], shot.scene.families[f].leaf_shader,
-                          shot.materials[shot.materials.leaf(uint32_t(f))].edge);
+    add_world_cards(shot, dir, world);
     world.commit();
     EXPECT_EQ(shot.sun_rays->caster_count(), world.caster_count());
     double sum = 0, shade = 0;
