@@ -13,14 +13,12 @@ DEPS := build-essential cmake ninja-build libopenmesh-dev libglm-dev libopenimag
         libcpp-httplib-dev libtinygltf-dev
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-FUZZ_BUILD ?= build-fuzz
-# Seconds each fuzz target runs in `make fuzz` (CI: 20 s each of the ten, to keep its run under an
-# hour).
+# Seconds each fuzz target runs in `make fuzz` (CI: 20 s each of the ten, two at once).
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := tree_preset shader_preset palette scene set_value studio_request particle_file graftal \
                 imposter gltf
 
-.PHONY: all deps configure build build-sanitize build-fuzz render test test-sanitize test-farm test-studio test-clients fuzz bench format reference golden gallery clean
+.PHONY: all deps configure build build-sanitize render test test-sanitize test-farm test-studio test-clients fuzz bench format reference golden gallery clean
 
 all: build
 
@@ -40,6 +38,15 @@ endef
 deps:
 	$(call install_missing,$(DEPS))
 
+# Seeds build folder $(1)'s ctest cost data with tests/ctest_costs/$(2).txt when it has none, so
+# that a fresh build's `ctest -j` starts its longest tests first instead of last (a clean clone
+# otherwise runs them in file order, and the last long one runs alone). Refreshed from a run's
+# JUnit file: tools/ci/slowest_tests.py --cost-data tests/ctest_costs/$(2).txt FILE.xml.
+define seed_costs
+@mkdir -p $(1)/Testing/Temporary && { [ -s $(1)/Testing/Temporary/CTestCostData.txt ] || \
+    cp tests/ctest_costs/$(2).txt $(1)/Testing/Temporary/CTestCostData.txt; }
+endef
+
 configure: deps
 	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release
 
@@ -53,6 +60,7 @@ render: configure
 	$(BUILD)/pleinair render mortefontaine -o out/mortefontaine.png --explain
 
 test: build
+	$(call seed_costs,$(BUILD),release)
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS)
 
 # Renders a small shot on a real one-node Slurm cluster that the test starts and stops (as root;
@@ -79,43 +87,32 @@ test-clients: build
 	    DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends nodejs npm; }
 	tests/clients/run.sh $(abspath $(BUILD))/pleinair $(abspath $(BUILD))/clients
 
-# The same tests built with AddressSanitizer and UndefinedBehaviorSanitizer, but for the golden
-# images (2 minutes of test time under the sanitizers; the painters they reach run here through
-# the every-shipped-scene test), which `make test` runs. Every shipped shot still runs here,
-# through render and animate (ShippedScene.PaintsOneFrameWhicheverCommandPaintsIt, which
-# compares only the middle frame when sanitized and leaves the preview, the benches and the
-# stills to the plain build).
-SAN_SKIP := GoldenImages\.MatchTheirReferences
+# The same tests built with AddressSanitizer and UndefinedBehaviorSanitizer. Some do less there
+# (test::kAddressSanitizer, each says why): the golden images are compared in the plain build
+# only (the painters they reach run here through the every-shipped-scene test), and every
+# shipped shot runs through render and animate but compares only its middle frame, leaving the
+# preview, the benches and the stills to the plain build.
+# One build, by clang, serves these tests and the fuzzers (`make fuzz`): the sources the parsers
+# reach are instrumented for libFuzzer's coverage too (CMakeLists.txt, PLEINAIR_FUZZ); clang
+# compiles it in a third of GCC's time under the sanitizers (BENCHMARKS.md, "CI's time").
+SAN_DEPS := clang libfuzzer-14-dev
 build-sanitize: deps
-	cmake -S . -B $(SAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	    -DPLEINAIR_SANITIZE=ON -DPLEINAIR_BENCH=OFF
+	$(call install_missing,$(SAN_DEPS))
+	CXX=clang++ cmake -S . -B $(SAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	    -DPLEINAIR_SANITIZE=ON -DPLEINAIR_FUZZ=ON
 	cmake --build $(SAN_BUILD) -j $(JOBS)
 
 test-sanitize: build-sanitize
-	cd $(SAN_BUILD) && ctest --output-on-failure -j $(JOBS) -E '$(SAN_SKIP)' $(CTEST_ARGS)
+	$(call seed_costs,$(SAN_BUILD),sanitize)
+	cd $(SAN_BUILD) && ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS)
 
-# Every parser fuzzed with libFuzzer under ASan and UBSan (clang), FUZZ_SECONDS each, from the
-# committed seed corpus (new inputs go to a scratch folder, not the repository). A finding stops
-# with the input saved as $(FUZZ_BUILD)/finding-*; minimise it (-minimize_crash=1) and commit
-# it under tests/fuzz/regressions/TARGET/, where every test run replays it.
-build-fuzz: deps
-	@dpkg-query -W -f='$${Status}\n' clang libfuzzer-14-dev 2>/dev/null | grep -c "install ok installed" | grep -q 2 || \
-	    { $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends clang libfuzzer-14-dev; }
-	CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPLEINAIR_FUZZ=ON
-	cmake --build $(FUZZ_BUILD) -j $(JOBS)
-
-fuzz: build-fuzz
-	@for t in $(FUZZ_TARGETS); do \
-	    mkdir -p $(FUZZ_BUILD)/corpus/$$t && \
-	    echo "fuzz $$t: $(FUZZ_SECONDS) s" && \
-	    PLEINAIR_PRESETS=$(abspath presets) $(FUZZ_BUILD)/tests/fuzz/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) \
-	        -max_len=65536 -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 \
-	        -artifact_prefix=$(FUZZ_BUILD)/finding-$$t- \
-	        $(FUZZ_BUILD)/corpus/$$t tests/fuzz/corpus/$$t \
-	        $$( [ -d tests/fuzz/regressions/$$t ] && echo tests/fuzz/regressions/$$t ) \
-	        2>&1 | grep -E "^(stat::|==|fuzz finding|SUMMARY|Done|#[0-9]+ *DONE)" ; \
-	    test $${PIPESTATUS[0]} -eq 0 || exit 1; \
-	done
+# Every parser fuzzed with libFuzzer under ASan and UBSan (clang), FUZZ_SECONDS each, JOBS at
+# once (tools/ci/fuzz.sh), from the committed seed corpus (new inputs go to a scratch folder, not
+# the repository). A finding fails the run with the input saved as $(SAN_BUILD)/finding-*;
+# minimise it (-minimize_crash=1) and commit it under tests/fuzz/regressions/TARGET/, where every
+# test run replays it.
+fuzz: build-sanitize
+	tools/ci/fuzz.sh $(abspath $(SAN_BUILD)) $(FUZZ_SECONDS) $(JOBS) $(FUZZ_TARGETS)
 
 # The Google Benchmark programs in $(BUILD)/tests (pleinair_bench_*) are built on request.
 bench: configure

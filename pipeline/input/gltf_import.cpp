@@ -35,9 +35,9 @@ bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, in
     return true;
 }
 
-class Reader {
+class GltfReader {
   public:
-    Reader(const GltfDocument& doc, const std::string& source, const std::string& pointer)
+    GltfReader(const GltfDocument& doc, const std::string& source, const std::string& pointer)
         : m_(doc.model), doc_(doc), source_(source), pointer_(pointer) {}
 
     [[noreturn]] void fail(const std::string& what) const {
@@ -143,7 +143,7 @@ glm::dmat4 local_matrix(const tinygltf::Node& n) {
 }
 
 // Each node's parent (-1 at a root), refusing a node that is its own ancestor.
-std::vector<int> parents_of(const Reader& rd) {
+std::vector<int> parents_of(const GltfReader& rd) {
     const auto& nodes = rd.model().nodes;
     std::vector<int> parent(nodes.size(), -1);
     for (size_t i = 0; i < nodes.size(); ++i)
@@ -162,7 +162,7 @@ std::vector<int> parents_of(const Reader& rd) {
     return parent;
 }
 
-glm::dmat4 world_matrix(const Reader& rd, const std::vector<int>& parent, int node,
+glm::dmat4 world_matrix(const GltfReader& rd, const std::vector<int>& parent, int node,
                         const std::map<int, glm::dmat4>& overrides = {}) {
     glm::dmat4 m(1.0);
     for (int n = node; n >= 0; n = parent[n]) {
@@ -237,7 +237,7 @@ std::shared_ptr<const GltfDocument> parse_gltf(const std::string& bytes, const s
 QuadMesh gltf_triangles(const GltfDocument& doc, const std::vector<std::string>& nodes,
                         const glm::dvec3& position, double scale, const std::string& source,
                         const std::string& pointer) {
-    const Reader rd(doc, source, pointer);
+    const GltfReader rd(doc, source, pointer);
     const tinygltf::Model& m = doc.model;
     const std::vector<int> parent = parents_of(rd);
     std::set<std::string> wanted(nodes.begin(), nodes.end());
@@ -358,7 +358,7 @@ namespace {
 
 // The camera node named `name` (the first with a camera when empty), checked: perspective, a
 // field of view in range. Its yfov in degrees goes to `yfov`.
-int find_camera(const Reader& rd, const std::string& name, double& yfov) {
+int find_camera(const GltfReader& rd, const std::string& name, double& yfov) {
     const tinygltf::Model& m = rd.model();
     int node = -1;
     std::string cameras;
@@ -388,7 +388,7 @@ struct Channel {
 
 // The animation channels that move `node`: of it or of any node above it, read and checked;
 // their sample times go into `times`.
-std::vector<Channel> channels_moving(const Reader& rd, const std::vector<int>& parent, int node,
+std::vector<Channel> channels_moving(const GltfReader& rd, const std::vector<int>& parent, int node,
                                      std::set<double>& times) {
     std::set<int> chain;
     for (int n = node; n >= 0; n = parent[n]) chain.insert(n);
@@ -421,7 +421,7 @@ std::vector<Channel> channels_moving(const Reader& rd, const std::vector<int>& p
 }
 
 // `node`'s world matrix at time t, its channels and its parents' applied.
-glm::dmat4 posed_world(const Reader& rd, const std::vector<int>& parent, int node,
+glm::dmat4 posed_world(const GltfReader& rd, const std::vector<int>& parent, int node,
                        const std::vector<Channel>& channels, double t) {
     std::map<int, tinygltf::Node> posed;
     for (const Channel& c : channels) {
@@ -444,7 +444,7 @@ glm::dmat4 posed_world(const Reader& rd, const std::vector<int>& parent, int nod
 CameraTrack gltf_camera_track(const GltfDocument& doc, const std::string& name,
                               double focus_distance, double fps, const std::string& source,
                               const std::string& pointer) {
-    const Reader rd(doc, source, pointer);
+    const GltfReader rd(doc, source, pointer);
     const std::vector<int> parent = parents_of(rd);
     double yfov = 0;
     // The vertical field of view whatever the image's shape (the file's aspect ratio is not

@@ -201,7 +201,9 @@ ChangeLevel Workspace::set_all(const std::vector<std::pair<std::string, std::str
     auto sets = sets_;
     ChangeLevel level = ChangeLevel::kFrame;
     std::vector<std::string> families;
-    for (const auto& [p, v] : changes) {
+    for (const auto& change : changes) {
+        // Named, not a structured binding: clang 14 (the sanitized build) cannot capture those.
+        const std::string &p = change.first, &v = change.second;
         if (p.empty() || p[0] != '/')
             throw InputError(file_.string(), p, "expected a JSON pointer starting with /");
         auto it = std::find_if(sets.begin(), sets.end(), [&](auto& e) { return e.first == p; });

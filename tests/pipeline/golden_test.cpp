@@ -135,6 +135,9 @@ std::vector<uint8_t> paint_case(const fs::path& dir, int& width, int& height) {
 }
 
 TEST(GoldenImages, MatchTheirReferences) {
+    // Two minutes of test time under the sanitizers, for painters the every-shipped-scene test
+    // runs there already (CI's time, issue 51): the plain build compares the references.
+    if (test::kAddressSanitizer) GTEST_SKIP() << "the golden images are compared in the plain build";
     fs::path root = test::source_dir() / "tests" / "golden";
     int cases = 0;
     for (const auto& entry : fs::directory_iterator(root)) {

@@ -1,11 +1,15 @@
 #!/usr/bin/env python3
 """Prints the slowest tests of one or more ctest JUnit files (ctest --output-junit), slowest first.
 
-    tools/ci/slowest_tests.py [--most N] FILE.xml [FILE.xml ...]
+    tools/ci/slowest_tests.py [--most N] [--cost-data OUT] FILE.xml [FILE.xml ...]
 
 Each row: seconds, the file's label (its name without .xml) and the test's name. ctest writes a
 test's wall time as the testcase's `time` attribute; a missing or empty file is said, not fatal,
 so a CI run that failed before its tests still prints its stage table.
+
+--cost-data OUT also writes the tests' times as ctest's cost data (CTestCostData.txt: a line
+`NAME RUNS SECONDS` a test, then `---`), from which ctest -j starts the longest tests first; the
+Makefile seeds a fresh build's with tests/ctest_costs/ (BENCHMARKS.md, "CI's time").
 """
 import argparse
 import os
@@ -16,6 +20,7 @@ import xml.etree.ElementTree as ET
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--most", type=int, default=10)
+    ap.add_argument("--cost-data")
     ap.add_argument("files", nargs="+")
     args = ap.parse_args()
     rows = []
@@ -33,6 +38,12 @@ def main():
                 continue
             rows.append((seconds, label, case.get("name", "?")))
     rows.sort(key=lambda r: -r[0])
+    if args.cost_data:
+        with open(args.cost_data, "w") as out:
+            for seconds, _, name in rows:
+                if " " not in name:  # ctest splits a cost line at spaces
+                    out.write(f"{name} 1 {seconds:.3f}\n")
+            out.write("---\n")
     total = sum(r[0] for r in rows)
     print(f"{len(rows)} tests, {total:.0f} s of test time; the {min(args.most, len(rows))} slowest:")
     for seconds, label, name in rows[: args.most]:
