@@ -75,7 +75,7 @@ class ProgressReport {
 };
 
 // --explain after the frames: each pass's median time over the frames painted after the one
-// explained. The first frame casts every occlusion ray and traces the light of every particle
+// explained. The first frame builds every occlusion map and traces the light of every particle
 // it shows; the frames after it reuse most of both, so their cost is what a run pays a frame.
 void print_later_passes(const std::vector<std::vector<PassReport>>& later) {
     if (later.empty()) return;
@@ -250,7 +250,7 @@ std::vector<std::pair<double, int>> paint_frames(const Shot& shot, const std::ve
     BufferPool buffers;
     std::unique_ptr<PendingWrite> pending;
     std::vector<std::vector<PassReport>> later;  // --explain: the passes of frames after the first
-    // Frames painted in order share most of their occlusion rays (seen_memo.h).
+    // Frames painted in order share most of their occlusion maps (seen_memo.h).
     SeenMemo memo;
     // And their water strokes' mirrors (mirror_memo.h).
     MirrorMemo mirrors;

@@ -46,8 +46,8 @@ struct FrameSettings {
     // FrameAbandoned. An interactive client (the studio) sets it so that the latest request
     // wins; the frame path knows nothing of who asks.
     std::function<bool()> abandon;
-    // Frames of one shot painted in order (animate, the coherence bench): the occlusion rays'
-    // answers kept from one frame to the next (seen_memo.h). Null casts every ray.
+    // Frames of one shot painted in order (animate, the coherence bench): the seen window's
+    // occlusion maps kept from one frame to the next (seen_memo.h). Null builds every map.
     SeenMemo* seen_memo = nullptr;
     // The same for water strokes' mirrors at their lattice times (mirror_memo.h). Null traces
     // the lattice times a frame reads.

@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "pipeline/frame/lod.h"
+#include "pipeline/frame/occlusion_map.h"
 #include "pipeline/shot/particle_clusters.h"
 
 namespace pleinair {
@@ -28,5 +29,14 @@ enum class ClusterFate : uint8_t {
 ClusterFate cluster_fate(const Shot& shot, const FrameLod& lod, const Camera& cam,
                          const RenderSettings& rs, size_t item, const ParticleCluster& c,
                          double pad = 0);
+
+// Whether every particle of a cluster cluster_fate shows is hidden from each of the maps at any
+// height the sprites stage tests it from (sprites.cpp's visibility): its bounds (where the
+// level of detail may move it, its rays' lift off its limb or ground, `pad`) projected by each
+// map's camera and widened by the largest sprite it can hold, behind the farthest surface met
+// over that rectangle. Conservative: true only when visibility() would find each particle
+// hidden from every map, so culling it whole changes no sprite.
+bool cluster_hidden(const Shot& shot, const FrameLod& lod, const RenderSettings& rs, size_t item,
+                    const ParticleCluster& c, double pad, const std::vector<OcclusionMap>& maps);
 
 }  // namespace pleinair

@@ -253,49 +253,59 @@ double drawn_radius(const Camera& cam, const RenderSettings& rs, const SpriteMat
 }
 
 // How much of the sprite the camera sees past the opaque surfaces (none: it is culled; the
-// sprites in front paint over the silhouette), from the rays of SeenWindow. The heights are
-// points above the particle on the sprite, back-projected to its depth; only upwards, since
-// below a ground stroke's centre lies the ground. `o` is where the sprite is painted; a
-// moving camera's rays start from the particle's own place (`at`) and size, which no frame
-// changes, so a lattice time's rays are the same whichever frame casts them (the level of
-// detail moves and grows survivors a little every frame).
-float visibility(const SpriteContext& c, const SeenWindow* window, const SpriteMaterial& m,
+// sprites in front paint over the silhouette), from the occlusion maps (occlusion_map.h) of
+// the seen window's cameras. The heights are points above the particle on the sprite,
+// back-projected to its depth; only upwards, since below a ground stroke's centre lies the
+// ground. `o` is where the sprite is painted; a moving camera's window tests the particle's
+// own place (`at`) and size, which no frame changes, so a lattice time's answer is the same
+// whichever frame asks (the level of detail moves and grows survivors a little every frame).
+float visibility(const SpriteContext& c, const SeenWindow* window,
+                 const std::vector<OcclusionMap>& maps, const SpriteMaterial& m,
                  const SpriteInput& in, const RayOrigin& at, const RayOrigin& o, const Sprite& sp,
                  uint8_t* const* memo, size_t slot, Counters& n) {
-    if (!c.shot.view_rays) return 1.0f;
+    if (maps.empty()) return 1.0f;
     static constexpr double kHeight[3] = {0.0, 0.5, 1.0};
-    auto seen_from = [&](const Camera& cam, const RayOrigin& o, int height, double radius) {
+    // `answer`: where the ray's answer is kept from frame to frame (SeenMemo), or null.
+    auto seen_from = [&](const OcclusionMap& map, const RayOrigin& o, int height, double radius,
+                         uint8_t* answer) {
+        const Camera& cam = map.camera;
         const glm::dvec3 from = o.lifted() + cam.up * (kHeight[height] * radius);
+        const glm::dvec3 d = from - cam.eye;
+        const double z = glm::dot(d, cam.forward);
+        if (z > cam.near_depth) {
+            const double f = cam.focal_px / z;
+            const MapAnswer a = occluded_at(map, 0.5 * cam.width + f * glm::dot(d, cam.right),
+                                            0.5 * cam.height - f * glm::dot(d, cam.up), z);
+            if (a != MapAnswer::kUnsure) return a == MapAnswer::kSeen;
+        }
+        // On a surface, at a silhouette or off the map: its own ray towards the eye, where any
+        // hit short of the eye hides it (an occlusion query, cheaper than the nearest hit).
+        if (answer && *answer != SeenMemo::kUnknown) return *answer == SeenMemo::kSeen;
         const glm::dvec3 to_eye = cam.eye - from;
         const double dist = glm::length(to_eye);
         ++n.occlusion_rays.local();
-        // Any hit short of the eye hides it: an occlusion query, cheaper than the nearest hit.
-        return !(dist > 0) ||
-               !c.shot.view_rays->occluded(from, glm::vec3(to_eye / dist),
-                                           static_cast<float>(dist) * 0.999f, o.surface_normal());
+        const bool s = !(dist > 0) || !c.shot.view_rays->occluded(from, glm::vec3(to_eye / dist),
+                                                                  static_cast<float>(dist) * 0.999f,
+                                                                  o.surface_normal());
+        if (answer) *answer = s ? SeenMemo::kSeen : SeenMemo::kHidden;
+        return s;
     };
-    int seen = 0, rays = 0;
+    int seen = 0, tests = 0;
     if (!window || window->cameras.empty()) {
         const double radius = std::max(sp.half_w, sp.half_l) * sp.depth / c.cam.focal_px;
-        for (int h = 0; h < 3; ++h) seen += seen_from(c.cam, o, h, radius);
-        rays = 3;
+        for (int h = 0; h < 3; ++h) seen += seen_from(maps[0], o, h, radius, nullptr);
+        tests = 3;
     } else {
-        for (size_t i = 0; i < window->cameras.size(); ++i) {
-            uint8_t* answer = memo ? &memo[i][slot] : nullptr;
-            if (answer && *answer != SeenMemo::kUnknown) {
-                seen += *answer == SeenMemo::kSeen;
-                continue;
-            }
-            const Camera& cam = window->cameras[i];
-            const bool s =
-                seen_from(cam, at, window->heights[i], drawn_radius(cam, c.rs, m, in, at.world));
-            if (answer) *answer = s ? SeenMemo::kSeen : SeenMemo::kHidden;
-            seen += s;
+        for (size_t i = 0; i < maps.size(); ++i) {
+            const Camera& cam = maps[i].camera;
+            seen +=
+                seen_from(maps[i], at, window->heights[i], drawn_radius(cam, c.rs, m, in, at.world),
+                          memo ? &memo[i][slot] : nullptr);
         }
-        rays = static_cast<int>(window->cameras.size());
+        tests = static_cast<int>(maps.size());
     }
     if (seen == 0) ++n.hidden.local();
-    return static_cast<float>(seen) / static_cast<float>(rays);
+    return static_cast<float>(seen) / static_cast<float>(tests);
 }
 
 // The 4 x 4 grid of light over a sprite's footprint, back-projected at the particle's depth.
@@ -352,7 +362,8 @@ struct ItemSprites {
     size_t item;
     SpriteSet& out;
     Counters& counters;
-    std::vector<uint8_t*> memo;  // per window camera, this item's answers kept from before
+    const std::vector<OcclusionMap>& maps;  // the seen window's (seen_memo.h)
+    std::vector<uint8_t*> memo;  // per window camera, this item's rays' answers kept from before
 
     void remember() {
         if (!input.seen_memo || !input.seen || input.seen->cameras.empty()) return;
@@ -383,8 +394,8 @@ struct ItemSprites {
         const RayOrigin at_rest = o;
         if (c.wind && c.wind->on && kind != SpriteKind::kSurface) blow(c, item, kind, j, in, o);
         if (!place_sprite(c, mat, in, sp)) return void(++out.culled);
-        const float seen = visibility(c, input.seen, shot.materials[mat], in, origin, at_rest, sp,
-                                      memo.empty() ? nullptr : memo.data(), slot, counters);
+        const float seen = visibility(c, input.seen, maps, shot.materials[mat], in, origin, at_rest,
+                                      sp, memo.empty() ? nullptr : memo.data(), slot, counters);
         if (!(seen > 0.0f)) return void(++out.culled);
         sp.fade *= seen;
         const bool traced = plan.sun_light == SunLightSource::kShotScene ||
@@ -424,8 +435,11 @@ struct ItemSprites {
         for (const ParticleCluster& cl : ic.clusters) {
             // A tree's clusters widened by as far as the wind moves any of its particles.
             const double pad = tree && c.wind && c.wind->on ? c.wind->reach[item] : 0.0;
-            const ClusterFate fate = cluster_fate(shot, c.lod, c.cam, c.rs, item, cl, pad);
-            if (fate == ClusterFate::kShown) {
+            ClusterFate fate = cluster_fate(shot, c.lod, c.cam, c.rs, item, cl, pad);
+            // Behind the surfaces from every camera of the seen window: a few lookups.
+            const bool hidden = fate == ClusterFate::kShown &&
+                                cluster_hidden(shot, c.lod, c.rs, item, cl, pad, maps);
+            if (fate == ClusterFate::kShown && !hidden) {
                 std::vector<uint32_t>& to = shown[cl.kind == SpriteKind::kLeaf];
                 to.insert(to.end(), ic.order.begin() + cl.first,
                           ic.order.begin() + cl.first + cl.count);
@@ -439,6 +453,7 @@ struct ItemSprites {
                     [&](uint32_t j) { return !drawn_as_graftals(shot, item, cl.kind, j); });
             out.culled += n, out.grouped += n;
             if (fate == ClusterFate::kFaded) out.faded += n;
+            if (hidden) out.hidden += n;
         }
         const SpriteKind first = tree ? SpriteKind::kBark : SpriteKind::kSurface;
         // At most one sprite a particle looked at: one allocation, not a doubling series.
@@ -476,10 +491,16 @@ SpriteSet make_sprites(const SpriteStageInput& input) {
     for (size_t i = 0; i < items; ++i) per_item[i].sprites = std::move(parts[i]);
     Counters counters;
     const bool by_cluster = input.group_culling && shot.clusters.size() == items;
+    // The seen window's occlusion maps, kept from the frames before when the memo has them.
+    uint64_t map_rays = 0;
+    std::vector<OcclusionMap> own;
+    const std::vector<OcclusionMap>& maps =
+        input.seen_memo ? input.seen_memo->maps(shot, input.seen, c.cam, map_rays)
+                        : (own = occlusion_maps(shot, input.seen, c.cam, map_rays));
     if (input.seen_memo && input.seen) input.seen_memo->begin_frame(shot, *input.seen, c.rs);
     tbb::parallel_for(size_t{0}, items, [&](size_t i) {
         FlushDenormals ftz;  // Embree's modes, while this task traces
-        ItemSprites make{c, input, i, per_item[i], counters, {}};
+        ItemSprites make{c, input, i, per_item[i], counters, maps, {}};
         make.remember();
         by_cluster ? make.by_cluster() : make.each();
     });
@@ -505,13 +526,15 @@ SpriteSet make_sprites(const SpriteStageInput& input) {
         all.faded += s.faded;
         all.thinned += s.thinned;
         all.grouped += s.grouped;
+        all.hidden += s.hidden;
         parts[i] = std::move(s.sprites);
         s = SpriteSet{};
     }
     if (input.buffers) input.buffers->give_sprite_parts(std::move(parts));
     all.shadow_rays = counters.shadow_rays.combine(std::plus<uint64_t>());
-    all.hidden = counters.hidden.combine(std::plus<uint64_t>());
+    all.hidden += counters.hidden.combine(std::plus<uint64_t>());
     all.occlusion_rays = counters.occlusion_rays.combine(std::plus<uint64_t>());
+    all.map_rays = map_rays;
     return all;
 }
 
@@ -535,10 +558,13 @@ SpriteSet sprites_stage(const FrameContext& ctx, const FrameLod& lod, const Fram
                  ? "; light kept in the shot, traced when first shown"
              : plan.shadows ? "; a shadow ray per particle"
                             : "") +
-            (!plan.underpaint       ? ""
-             : seen.cameras.empty() ? "; hidden ones culled"
-                                    : "; hidden ones culled, seen from where the eye is over " +
-                                          std::to_string(seen.cameras.size()) + " frames"),
+            (!plan.underpaint ? ""
+             : seen.cameras.empty()
+                 ? "; hidden ones culled by the camera's occlusion map"
+                 : "; hidden ones culled by occlusion maps from where the eye is over " +
+                       std::to_string(seen.cameras.size()) +
+                       " frames, a cluster at a time where "
+                       "all of it is behind"),
         std::to_string(sprites.sprites.size()) + " sprites, " + std::to_string(sprites.culled) +
             " culled (" + std::to_string(sprites.hidden) + " hidden, " +
             std::to_string(sprites.faded) + " faded out" +
@@ -547,10 +573,12 @@ SpriteSet sprites_stage(const FrameContext& ctx, const FrameLod& lod, const Fram
             ")" +
             (sprites.shadow_rays ? ", " + std::to_string(sprites.shadow_rays) + " shadow rays"
                                  : "") +
-            (sprites.occlusion_rays
-                 ? ", " + std::to_string(sprites.occlusion_rays) + " occlusion rays" +
-                       (ctx.settings.seen_memo ? " (the others' answers kept from frames before)"
-                                               : "")
+            (sprites.map_rays || sprites.occlusion_rays
+                 ? ", " + std::to_string(sprites.map_rays) + " occlusion map rays" +
+                       (ctx.settings.seen_memo ? " (the other maps kept from frames before)" : "") +
+                       ", " + std::to_string(sprites.occlusion_rays) +
+                       " occlusion rays where a map was unsure" +
+                       (ctx.settings.seen_memo ? " (the others' answers kept)" : "")
                  : ""));
     return sprites;
 }

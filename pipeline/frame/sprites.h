@@ -46,7 +46,8 @@ struct SpriteSet {
     uint64_t thinned = 0;  // of those, thinned out for being small on screen (lod.h)
     uint64_t grouped = 0;  // of those, culled with their cluster, none looked at (group_cull.h)
     uint64_t shadow_rays = 0;
-    uint64_t occlusion_rays = 0;  // cast this frame (SeenMemo answers the others)
+    uint64_t occlusion_rays = 0;  // a stroke's own, where its occlusion maps were unsure
+    uint64_t map_rays = 0;        // cast this frame for occlusion maps (SeenMemo keeps maps)
 };
 
 // What the sprites stage reads.
@@ -63,7 +64,7 @@ struct SpriteStageInput {
     // Clusters that cannot show are culled whole (group_cull.h); false looks at every particle
     // (the same sprites, the reference the tests compare with).
     bool group_culling = true;
-    // Occlusion answers kept from the frames before (seen_memo.h); null casts every ray.
+    // Occlusion maps kept from the frames before (seen_memo.h); null builds every map.
     SeenMemo* seen_memo = nullptr;
     // The trees' poses in the wind this frame (wind_stage.h); null or off: at rest.
     const FrameWind* wind = nullptr;

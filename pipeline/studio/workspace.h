@@ -134,7 +134,7 @@ class Workspace {
     // Stroke layers' memory kept from one painted frame to the next (buffer_pool.h).
     BufferPool buffers_;
     // Frames of a walk painted one after another (stepping or playing through it) share their
-    // occlusion answers and water mirrors, as animate's do (seen_memo.h, mirror_memo.h);
+    // occlusion maps and water mirrors, as animate's do (seen_memo.h, mirror_memo.h);
     // emptied at every change and every rebuilt shot, so none outlives what it was traced in.
     SeenMemo seen_;
     MirrorMemo mirrors_;
