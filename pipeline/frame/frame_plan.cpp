@@ -2,6 +2,7 @@
 #include "pipeline/frame/frame_plan.h"
 
 #include "pipeline/frame/frame_view.h"
+#include "pipeline/frame/occlusion_map.h"
 #include "pipeline/shot/shot.h"
 
 namespace pleinair {
@@ -69,6 +70,26 @@ FramePlan plan_frame(const Shot& shot, const FrameSettings& settings) {
     add("underpaint", plan.underpaint,
         plan.underpaint ? "terrain or rocks are visible: flat colour and depth under the strokes"
                         : "no visible mesh (no terrain, no rocks)");
+    // A map costs a ray a texel per camera of the seen window; it saves at most a ray a stroke
+    // it answers, and on open ground it is unsure of most (BENCHMARKS.md, "Occlusion maps"):
+    // drawn where the shot holds at least kMapsPay strokes a texel ray.
+    constexpr double kMapsPay = 8;
+    const Camera& cam = shot.scene.camera;
+    const int k = occlusion_texel_px(cam.width);
+    const double texel_rays = double((cam.width + k - 1) / k) * double((cam.height + k - 1) / k) *
+                              std::max(1, settings.render.occlusion_frames);
+    double strokes = 0;
+    for (size_t i = 0; i < shot.item_count(); ++i) strokes += double(item_particles(shot, i));
+    plan.occlusion_maps = plan.underpaint && strokes >= kMapsPay * texel_rays;
+    add("occlusion maps", plan.occlusion_maps,
+        !plan.underpaint ? "nothing opaque to hide behind"
+        : plan.occlusion_maps
+            ? "the shot's strokes outnumber the seen window's map texels " +
+                  std::to_string(static_cast<int>(strokes / texel_rays)) +
+                  " to 1: each camera draws the surfaces' depth, hidden clusters are culled "
+                  "unread and a stroke casts its ray only where its map is unsure"
+            : "fewer than " + std::to_string(static_cast<int>(kMapsPay)) +
+                  " strokes a map texel: each stroke casts its rays");
     const bool circles = scene_has_circles(shot.scene);
     plan.lod = circles && settings.render.level_of_detail;
     add("level of detail", plan.lod,

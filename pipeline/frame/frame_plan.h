@@ -80,6 +80,9 @@ struct FramePlan {
     SunLightSource sun_light = SunLightSource::kNone;
     bool fragment_shadows = false;  // a 4 x 4 grid of shadow rays per sprite
     bool underpaint = false;        // a visible mesh: flat colour under the strokes
+    // Occlusion maps (occlusion_map.h) answer first where a frame tests many more strokes
+    // than its maps have texels (a dense wood); elsewhere each stroke casts its rays.
+    bool occlusion_maps = false;
     bool bare_blend = false;
     bool lod = false;          // the camera carries distance circles and level_of_detail is on
     bool graftals = false;     // some family or material is drawn in a graftal style

@@ -263,23 +263,24 @@ float visibility(const SpriteContext& c, const SeenWindow* window,
                  const std::vector<OcclusionMap>& maps, const SpriteMaterial& m,
                  const SpriteInput& in, const RayOrigin& at, const RayOrigin& o, const Sprite& sp,
                  uint8_t* const* memo, size_t slot, Counters& n) {
-    if (maps.empty()) return 1.0f;
+    if (!c.shot.view_rays) return 1.0f;
     static constexpr double kHeight[3] = {0.0, 0.5, 1.0};
+    // From camera `cam`, whose map (the frame plan's occlusion_maps) is `map` or null.
     // `answer`: where the ray's answer is kept from frame to frame (SeenMemo), or null.
-    auto seen_from = [&](const OcclusionMap& map, const RayOrigin& o, int height, double radius,
-                         uint8_t* answer) {
-        const Camera& cam = map.camera;
+    auto seen_from = [&](const Camera& cam, const OcclusionMap* map, const RayOrigin& o, int height,
+                         double radius, uint8_t* answer) {
         const glm::dvec3 from = o.lifted() + cam.up * (kHeight[height] * radius);
         const glm::dvec3 d = from - cam.eye;
         const double z = glm::dot(d, cam.forward);
-        if (z > cam.near_depth) {
+        if (map && z > cam.near_depth) {
             const double f = cam.focal_px / z;
-            const MapAnswer a = occluded_at(map, 0.5 * cam.width + f * glm::dot(d, cam.right),
+            const MapAnswer a = occluded_at(*map, 0.5 * cam.width + f * glm::dot(d, cam.right),
                                             0.5 * cam.height - f * glm::dot(d, cam.up), z);
             if (a != MapAnswer::kUnsure) return a == MapAnswer::kSeen;
         }
-        // On a surface, at a silhouette or off the map: its own ray towards the eye, where any
-        // hit short of the eye hides it (an occlusion query, cheaper than the nearest hit).
+        // No map, or on a surface, at a silhouette or off the map: its own ray towards the
+        // eye, where any hit short of the eye hides it (an occlusion query, cheaper than the
+        // nearest hit).
         if (answer && *answer != SeenMemo::kUnknown) return *answer == SeenMemo::kSeen;
         const glm::dvec3 to_eye = cam.eye - from;
         const double dist = glm::length(to_eye);
@@ -293,16 +294,17 @@ float visibility(const SpriteContext& c, const SeenWindow* window,
     int seen = 0, tests = 0;
     if (!window || window->cameras.empty()) {
         const double radius = std::max(sp.half_w, sp.half_l) * sp.depth / c.cam.focal_px;
-        for (int h = 0; h < 3; ++h) seen += seen_from(maps[0], o, h, radius, nullptr);
+        const OcclusionMap* map = maps.empty() ? nullptr : &maps[0];
+        for (int h = 0; h < 3; ++h) seen += seen_from(c.cam, map, o, h, radius, nullptr);
         tests = 3;
     } else {
-        for (size_t i = 0; i < maps.size(); ++i) {
-            const Camera& cam = maps[i].camera;
-            seen +=
-                seen_from(maps[i], at, window->heights[i], drawn_radius(cam, c.rs, m, in, at.world),
-                          memo ? &memo[i][slot] : nullptr);
+        for (size_t i = 0; i < window->cameras.size(); ++i) {
+            const Camera& cam = window->cameras[i];
+            seen += seen_from(cam, maps.empty() ? nullptr : &maps[i], at, window->heights[i],
+                              drawn_radius(cam, c.rs, m, in, at.world),
+                              memo ? &memo[i][slot] : nullptr);
         }
-        tests = static_cast<int>(maps.size());
+        tests = static_cast<int>(window->cameras.size());
     }
     if (seen == 0) ++n.hidden.local();
     return static_cast<float>(seen) / static_cast<float>(tests);
@@ -495,8 +497,9 @@ SpriteSet make_sprites(const SpriteStageInput& input) {
     uint64_t map_rays = 0;
     std::vector<OcclusionMap> own;
     const std::vector<OcclusionMap>& maps =
-        input.seen_memo ? input.seen_memo->maps(shot, input.seen, c.cam, map_rays)
-                        : (own = occlusion_maps(shot, input.seen, c.cam, map_rays));
+        !input.plan.occlusion_maps ? own
+        : input.seen_memo          ? input.seen_memo->maps(shot, input.seen, c.cam, map_rays)
+                                   : (own = occlusion_maps(shot, input.seen, c.cam, map_rays));
     if (input.seen_memo && input.seen) input.seen_memo->begin_frame(shot, *input.seen, c.rs);
     tbb::parallel_for(size_t{0}, items, [&](size_t i) {
         FlushDenormals ftz;  // Embree's modes, while this task traces
@@ -558,13 +561,14 @@ SpriteSet sprites_stage(const FrameContext& ctx, const FrameLod& lod, const Fram
                  ? "; light kept in the shot, traced when first shown"
              : plan.shadows ? "; a shadow ray per particle"
                             : "") +
-            (!plan.underpaint ? ""
-             : seen.cameras.empty()
-                 ? "; hidden ones culled by the camera's occlusion map"
-                 : "; hidden ones culled by occlusion maps from where the eye is over " +
-                       std::to_string(seen.cameras.size()) +
-                       " frames, a cluster at a time where "
-                       "all of it is behind"),
+            (!plan.underpaint       ? ""
+             : seen.cameras.empty() ? "; hidden ones culled"
+                                    : "; hidden ones culled, seen from where the eye is over " +
+                                          std::to_string(seen.cameras.size()) + " frames") +
+            (plan.underpaint && plan.occlusion_maps
+                 ? " (each camera's occlusion map first, a cluster at a time where all of it is "
+                   "behind)"
+                 : ""),
         std::to_string(sprites.sprites.size()) + " sprites, " + std::to_string(sprites.culled) +
             " culled (" + std::to_string(sprites.hidden) + " hidden, " +
             std::to_string(sprites.faded) + " faded out" +
@@ -573,12 +577,15 @@ SpriteSet sprites_stage(const FrameContext& ctx, const FrameLod& lod, const Fram
             ")" +
             (sprites.shadow_rays ? ", " + std::to_string(sprites.shadow_rays) + " shadow rays"
                                  : "") +
-            (sprites.map_rays || sprites.occlusion_rays
+            (sprites.map_rays
                  ? ", " + std::to_string(sprites.map_rays) + " occlusion map rays" +
-                       (ctx.settings.seen_memo ? " (the other maps kept from frames before)" : "") +
-                       ", " + std::to_string(sprites.occlusion_rays) +
-                       " occlusion rays where a map was unsure" +
-                       (ctx.settings.seen_memo ? " (the others' answers kept)" : "")
+                       (ctx.settings.seen_memo ? " (the other maps kept from frames before)" : "")
+                 : "") +
+            (sprites.occlusion_rays
+                 ? ", " + std::to_string(sprites.occlusion_rays) + " occlusion rays" +
+                       (plan.occlusion_maps ? " where a map was unsure" : "") +
+                       (ctx.settings.seen_memo ? " (the others' answers kept from frames before)"
+                                               : "")
                  : ""));
     return sprites;
 }

@@ -1,6 +1,7 @@
 // Culling by group (group_cull.h) against culling particle by particle: the same sprites, in
 // the same order, from random cameras over shipped shots, with and without the thinning of
-// small strokes; and the thinning's own rule (lod.h).
+// small strokes and with occlusion maps; the thinning's own rule (lod.h); the memo of occlusion
+// maps and answers (seen_memo.h); and where the frame plan draws occlusion maps.
 #include "pipeline/frame/group_cull.h"
 
 #include <gtest/gtest.h>
@@ -24,7 +25,9 @@ namespace {
 // The sprites of a view, culled by group or particle by particle.
 SpriteSet sprites_of(const Shot& shot, const FrameView& view, const FrameSettings& fs,
                      bool group_culling) {
-    const FramePlan plan = plan_frame(shot, fs);
+    // With occlusion maps whatever the shot's size, so clusters are also culled behind them.
+    FramePlan plan = plan_frame(shot, fs);
+    plan.occlusion_maps = plan.underpaint;
     const FrameLod lod = level_of_detail(shot, view, fs.render);
     const SeenWindow seen = seen_window(shot.scene, view, fs.render);
     const FrameWind wind = frame_wind(shot, view.time, lod);  // still air: off
@@ -184,11 +187,12 @@ TEST(SeenMemo, FramesInOrderCastFewerRaysForTheSameSprites) {
         load_scene(test::source_dir() / "presets" / "scenes" / "forest-edge-walk.json"), options);
     FrameSettings fs = scene_frame_settings(shot.scene);
     SeenMemo memo;
-    uint64_t with = 0, without = 0;
+    uint64_t with = 0, without = 0, maps_kept = 0, maps_alone = 0;
     for (int f : {20, 21, 22, 23, 25, 24, 40}) {  // in order, a step back, a jump
         SCOPED_TRACE(f);
         const FrameView view = view_at(shot.scene, frame_time(f, shot.scene.fps));
-        const FramePlan plan = plan_frame(shot, fs);
+        FramePlan plan = plan_frame(shot, fs);
+        plan.occlusion_maps = true;  // maps kept as well as answers
         const FrameLod lod = level_of_detail(shot, view, fs.render);
         const SeenWindow seen = seen_window(shot.scene, view, fs.render);
         ASSERT_EQ(seen.cameras.size(), 4u);
@@ -198,7 +202,11 @@ TEST(SeenMemo, FramesInOrderCastFewerRaysForTheSameSprites) {
         const SpriteSet remembered = make_sprites(in);
         expect_same_sprites(remembered, each);
         with += remembered.occlusion_rays, without += each.occlusion_rays;
+        maps_kept += remembered.map_rays, maps_alone += each.map_rays;
     }
+    // The maps too: a frame one after another builds one of its four.
+    EXPECT_GT(maps_kept, 0u);
+    EXPECT_LT(maps_kept, maps_alone * 0.55);
     // Frames one apart share three of four lattice times: about a quarter of the rays, and
     // the first frame and the jump cast them all.
     EXPECT_LT(with, without * 0.55);
@@ -248,6 +256,28 @@ TEST(Thinning, KeepsAboutTheAreaAndFadesIn) {
     }
     EXPECT_NEAR(sum / 10000, 0.5, 0.01);
     EXPECT_NE(thin_draw(3, SpriteKind::kLeaf, 7), thin_draw(4, SpriteKind::kLeaf, 7));
+}
+
+}  // namespace
+}  // namespace pleinair
+
+namespace pleinair {
+namespace {
+
+// The frame plan draws occlusion maps where the shot's strokes outnumber the maps' texels eight
+// to one (a small frame of the open walk, the dense wood at any size), not where a map would
+// cost more rays than its answers save (the open walk at full size: BENCHMARKS.md, "Occlusion
+// maps").
+TEST(OcclusionMaps, DrawnWhereTheStrokesOutnumberTheTexels) {
+    auto plan_at = [](const char* scene, int w, int h) {
+        const Shot shot = build_shot(load_scene(
+            test::source_dir() / "presets" / "scenes" / scene,
+            {"/camera/width=" + std::to_string(w), "/camera/height=" + std::to_string(h)}));
+        return plan_frame(shot, scene_frame_settings(shot.scene)).occlusion_maps;
+    };
+    EXPECT_TRUE(plan_at("forest-edge-walk.json", 112, 64));
+    EXPECT_FALSE(plan_at("forest-edge-walk.json", 1920, 1080));
+    EXPECT_FALSE(plan_at("truffula-walk.json", 256, 144));
 }
 
 }  // namespace

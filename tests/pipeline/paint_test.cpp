@@ -193,9 +193,10 @@ TEST(Paint, PlanSkipsWhatTheSceneDoesNotNeed) {
     EXPECT_FALSE(plan.bark);
     int skipped = 0;
     for (const auto& d : plan.decisions) skipped += !d.ran;
-    // bark, tint, atmosphere, aovs, shadows, underpaint, level of detail, graftals, imposters,
-    // sky, reflections, pigment mixing, canvas, wind
-    EXPECT_EQ(skipped, 14);
+    // bark, tint, atmosphere, aovs, shadows, underpaint, occlusion maps, level of detail,
+    // graftals, imposters, sky, reflections, pigment mixing, canvas, wind
+    EXPECT_EQ(skipped, 15);
+    EXPECT_FALSE(plan.occlusion_maps);
     EXPECT_FALSE(plan.wind);
     EXPECT_FALSE(plan.imposters);
     // With no tint and no atmosphere the picture changes (they did something before).
