@@ -281,7 +281,6 @@ float visibility(const SpriteContext& c, const SeenWindow* window,
         // No map, or on a surface, at a silhouette or off the map: its own ray towards the
         // eye, where any hit short of the eye hides it (an occlusion query, cheaper than the
         // nearest hit).
-        if (answer && *answer != SeenMemo::kUnknown) return *answer == SeenMemo::kSeen;
         const glm::dvec3 to_eye = cam.eye - from;
         const double dist = glm::length(to_eye);
         ++n.occlusion_rays.local();
@@ -299,10 +298,16 @@ float visibility(const SpriteContext& c, const SeenWindow* window,
         tests = 3;
     } else {
         for (size_t i = 0; i < window->cameras.size(); ++i) {
+            // An answer kept is a ray's, cast where this camera's map (the same every frame) was
+            // unsure or absent: taken first, before the stroke's size is worked out.
+            uint8_t* answer = memo ? &memo[i][slot] : nullptr;
+            if (answer && *answer != SeenMemo::kUnknown) {
+                seen += *answer == SeenMemo::kSeen;
+                continue;
+            }
             const Camera& cam = window->cameras[i];
             seen += seen_from(cam, maps.empty() ? nullptr : &maps[i], at, window->heights[i],
-                              drawn_radius(cam, c.rs, m, in, at.world),
-                              memo ? &memo[i][slot] : nullptr);
+                              drawn_radius(cam, c.rs, m, in, at.world), answer);
         }
         tests = static_cast<int>(window->cameras.size());
     }

@@ -15,7 +15,7 @@ for rep in 1 2; do
             t0=$(date +%s.%N)
             sprites=$("$bin" render "$shot" --frame "$frame" --set /camera/width="$w" \
                 --set /camera/height="$h" -o "$out/f.png" --explain 2>&1 |
-                awk '$1 == "sprites" {print $2; exit}')
+                awk '$1 == "sprites" {print $2}')
             t1=$(date +%s.%N)
             echo "run $rep $shot ${w}x$h $bin sprites ${sprites} ms, $(echo "$t1 - $t0" | bc) s"
         done
