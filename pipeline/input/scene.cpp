@@ -538,9 +538,9 @@ void visit_scene(SceneDesc& s, V& v) {
                "once. A still camera is unaffected.");
         v.integer("occlusion_frames", r.occlusion_frames, {1, 8},
                   "A stroke partly or wholly behind an opaque surface (a crest, a trunk) is drawn "
-                  "by the share of rays towards the eye that reach it (each camera's occlusion "
-                  "map answers first, a ray a stroke only where it is unsure). When the camera "
-                  "moves, the "
+                  "by the share of rays towards the eye that reach it (where the frame plan "
+                  "draws occlusion maps, each camera's map answers first, a ray a stroke only "
+                  "where it is unsure). When the camera moves, the "
                   "rays go to where the eye is over this many frames around the frame's time, so "
                   "a stroke a silhouette uncovers or hides appears or disappears over that many "
                   "frames instead of in one (each frame changes it by at most 1 / this); 1 casts "
