@@ -74,9 +74,7 @@ FramePlan plan_frame(const Shot& shot, const FrameSettings& settings) {
     // it answers, and on open ground it is unsure of most (BENCHMARKS.md, "Occlusion maps"):
     // drawn where the shot holds at least kMapsPay strokes a texel ray.
     constexpr double kMapsPay = 8;
-    const Camera& cam = shot.scene.camera;
-    const int k = occlusion_texel_px(cam.width);
-    const double texel_rays = double((cam.width + k - 1) / k) * double((cam.height + k - 1) / k) *
+    const double texel_rays = static_cast<double>(occlusion_map_rays(shot.scene.camera)) *
                               std::max(1, settings.render.occlusion_frames);
     double strokes = 0;
     for (size_t i = 0; i < shot.item_count(); ++i) strokes += double(item_particles(shot, i));

@@ -133,7 +133,8 @@ bool cluster_hidden(const Shot& shot, const FrameLod& lod, const RenderSettings&
         if (b.in_front < 8) return false;
         const double reach = sprite_reach(m.camera, rs, lod, c, scale, b.zmin);
         if (!std::isfinite(reach)) return false;
-        // A hair nearer than the nearest corner: the particle's own depth is computed in floats.
+        // A hair nearer than the nearest corner: a particle's own depth is worked out from its
+        // lifted place, not the box's corners, and rounds differently.
         if (!occluded_box(m, b.x0 - reach, b.y0 - reach, b.x1 + reach, b.y1 + reach,
                           b.zmin * (1.0 - 1e-5)))
             return false;

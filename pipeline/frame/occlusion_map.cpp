@@ -64,6 +64,12 @@ void dilate(const std::vector<float>& d, int w, int h, std::vector<float>& far,
 
 int occlusion_texel_px(int image_width) { return std::max(2, (image_width + 959) / 480); }
 
+uint64_t occlusion_map_rays(const Camera& c) {
+    const int k = occlusion_texel_px(c.width);
+    return static_cast<uint64_t>((c.width + k - 1) / k) *
+           static_cast<uint64_t>((c.height + k - 1) / k);
+}
+
 OcclusionMap build_occlusion_map(const RayScene& rays, const Camera& camera) {
     OcclusionMap m;
     m.camera = camera;

@@ -34,6 +34,8 @@ struct OcclusionMap {
 // The texel's size for an image `image_width` wide: 2 pixels, more above 960 so a map has at
 // most about 480 texels across (130,000 rays a map at 1920x1080).
 int occlusion_texel_px(int image_width);
+// The rays (texels) of the camera's map: what drawing it costs, for the frame plan to weigh.
+uint64_t occlusion_map_rays(const Camera& camera);
 
 // One nearest-hit ray through the centre of each texel of the camera's image, rows in
 // parallel (each texel's answer its own, so the map is the same at any thread count).
