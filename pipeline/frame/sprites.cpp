@@ -173,8 +173,8 @@ SpriteInput sprite_input(const Shot& shot, size_t item, SpriteKind kind, size_t 
 
 // The thinning of small strokes (lod.h's thin_presence): a stroke drawn narrower than
 // render/thin_below_px (stroke_px's width, enlarged to min_stroke_px, times its level of
-// detail's scale) is kept by its draw, and a survivor grows to keep the area they all covered.
-// False when it is thinned out.
+// detail's scale) is kept by its draw, and a survivor grows to keep the area they all covered,
+// at most render/thin_max_growth. False when it is thinned out.
 bool thin(const SpriteContext& c, const SpriteMaterial& m, size_t item, size_t j, SpriteInput& in) {
     const double z = view_depth(c.cam, in.world);
     if (!(z > c.cam.near_depth)) return true;
@@ -186,7 +186,7 @@ bool thin(const SpriteContext& c, const SpriteMaterial& m, size_t item, size_t j
     const float kept = thin_presence(r, thin_draw(item, in.kind, j));
     if (!(kept > 0.0f)) return false;
     in.lod.fade *= kept;
-    const float grow = 1.0f / std::sqrt(thin_kept(r * r));
+    const float grow = std::min(1.0f / std::sqrt(thin_kept(r * r)), c.rs.thin_max_growth);
     in.lod.scale *= grow;
     in.lod.growth *= grow;
     return true;

@@ -23,6 +23,8 @@ const std::vector<DraftSetting>& draft_settings() {
         {"/render/thin_below_px", "6", [](RenderSettings& r) { r.thin_below_px = 6.0f; },
          "strokes drawn narrower than 6 px thinned at random, the survivors grown to keep their "
          "area: far crowns in fewer, larger strokes"},
+        {"/render/thin_max_growth", "4", [](RenderSettings& r) { r.thin_max_growth = 4.0f; },
+         "those survivors grown up to 4x (linear) so the draft's far crowns keep their area"},
         {"/render/coverage_cutoff", "0.01", [](RenderSettings& r) { r.coverage_cutoff = 0.01f; },
          "a pixel stops taking strokes once 1% of the light gets through: the sky's stroke field "
          "a shade bluer where it shows through crowns"},

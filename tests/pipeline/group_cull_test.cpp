@@ -258,6 +258,45 @@ TEST(Thinning, KeepsAboutTheAreaAndFadesIn) {
     EXPECT_NE(thin_draw(3, SpriteKind::kLeaf, 7), thin_draw(4, SpriteKind::kLeaf, 7));
 }
 
+// Thinning is on by default (issue 53: a preview is the same painting seen smaller): a walk's
+// small frame keeps fewer strokes than without it, and no survivor grows past
+// render/thin_max_growth, even where the near field or a wide thinning size asks for more (the
+// draft's 6 px would grow the smallest strokes 3.6x).
+TEST(Thinning, OnByDefaultAndSurvivorsGrowAtMostTheCap) {
+    const Shot shot =
+        build_shot(load_scene(test::source_dir() / "presets" / "scenes" / "mortefontaine-walk.json",
+                              {"/camera/width=160", "/camera/height=90"}));
+    const FrameView view = view_at(shot.scene, 2.0);
+    const FrameSettings defaults = scene_frame_settings(shot.scene);
+    EXPECT_EQ(defaults.render.thin_below_px, 2.0f * defaults.render.min_stroke_px);
+    EXPECT_EQ(defaults.render.thin_max_growth, 2.0f);
+    FrameSettings none = defaults;
+    none.render.thin_below_px = 0;
+    const SpriteSet all = sprites_of(shot, view, none, false);
+    std::map<uint64_t, float> width;
+    for (const Sprite& sp : all.sprites) width[sprite_key(sp)] = sp.half_w;
+    for (float thin_px : {3.0f, 6.0f}) {
+        SCOPED_TRACE(thin_px);
+        FrameSettings fs = defaults;
+        fs.render.thin_below_px = thin_px;
+        const SpriteSet thinned = sprites_of(shot, view, fs, false);
+        EXPECT_LT(thinned.sprites.size(), all.sprites.size() * (thin_px > 3 ? 0.5 : 0.8));
+        // (A grown survivor may reach past the frame's edge or a crest where the stroke at its
+        // own size did not: it has no width to compare with.)
+        float most = 0;
+        size_t compared = 0;
+        for (const Sprite& sp : thinned.sprites) {
+            const auto it = width.find(sprite_key(sp));
+            if (it == width.end()) continue;
+            most = std::max(most, sp.half_w / it->second);
+            ++compared;
+        }
+        EXPECT_GT(compared, thinned.sprites.size() * 0.95);
+        EXPECT_LE(most, 2.0f * (1 + 1e-5f));
+        EXPECT_GT(most, 1.5f) << "survivors grew";
+    }
+}
+
 }  // namespace
 }  // namespace pleinair
 

@@ -221,6 +221,7 @@ TEST(LevelOfDetail, FarSurvivorsArePaintedGrownByTheirTreesGrowth) {
     const FrameView view = still_view(shot.scene);
     FrameSettings on = scene_frame_settings(shot.scene), off = on;
     off.render.level_of_detail = false;
+    on.render.thin_below_px = 0;  // the circles' growth alone; thinning's is Thinning.*'s
     auto sprites = [&](const FrameSettings& fs) {
         const FramePlan plan = plan_frame(shot, fs);
         const FrameLod lod = level_of_detail(shot, view, fs.render);
