@@ -18,7 +18,7 @@ FUZZ_SECONDS ?= 60
 FUZZ_TARGETS := tree_preset shader_preset palette scene set_value studio_request particle_file graftal \
                 imposter gltf
 
-.PHONY: all deps configure build build-sanitize render test test-sanitize test-farm test-studio test-clients fuzz bench format reference golden gallery clean
+.PHONY: all deps configure build build-sanitize render test test-sanitize test-farm test-studio test-clients deps-studio deps-clients fuzz bench format reference golden gallery clean
 
 all: build
 
@@ -72,8 +72,9 @@ test-farm: build
 # python3-selenium if missing): tests/studio/test_studio.py. Screenshots stay in
 # $(BUILD)/studio-artifacts.
 STUDIO_DEPS := chromium chromium-driver python3-selenium
-test-studio: build
+deps-studio:
 	$(call install_missing,$(STUDIO_DEPS))
+test-studio: build deps-studio
 	/usr/bin/python3 tests/studio/test_studio.py --pleinair $(BUILD)/pleinair \
 	    --artifacts $(BUILD)/studio-artifacts
 
@@ -81,10 +82,11 @@ test-studio: build
 # Node.js with npm if missing; the Khronos validator comes from npm into $(BUILD)/clients):
 # tests/clients/run.sh.
 CLIENT_DEPS := blender python3-numpy
-test-clients: build
+deps-clients:
 	$(call install_missing,$(CLIENT_DEPS))
 	@command -v npm >/dev/null || { $(SUDO) apt-get update -qq && \
 	    DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends nodejs npm; }
+test-clients: build deps-clients
 	tests/clients/run.sh $(abspath $(BUILD))/pleinair $(abspath $(BUILD))/clients
 
 # The same tests built with AddressSanitizer and UndefinedBehaviorSanitizer. Some do less there
