@@ -1,10 +1,12 @@
-// `pleinair bench look SCENE`: the look's measures of a still or of a shot's frame, three
-// tables of one row (look_measures.h; crown_look.h and palette_look.h; the near ground's brush);
+// `pleinair bench look SCENE`: the look's measures of a still or of a shot's frame, four
+// tables of one row (look_measures.h; crown_look.h and palette_look.h; the near ground's brush;
+// the plan, mass_look.h);
 // --save writes the frame it measured.
 #include <cstdio>
 
 #include "pipeline/bench/crown_look.h"
 #include "pipeline/bench/look_measures.h"
+#include "pipeline/bench/mass_look.h"
 #include "pipeline/bench/palette_look.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/frame/paint_frame.h"
@@ -64,6 +66,26 @@ void print_foreground(const std::string& name, const Frame& f, const std::vector
                 static_cast<unsigned long long>(px), t5, t17, smooth);
 }
 
+// The fourth table: the picture's plan (issue 52 §7): whether the open sky repeats a motif, and
+// the values the frame holds blurred to its masses (mass_look.h).
+void print_plan(const std::string& name, const Frame& f, const std::vector<float>& l,
+                const std::vector<uint8_t>& sky) {
+    const RepeatLook rep = texture_repeat(l, f.width, f.height, sky);
+    const ValueMasses v = value_masses(l, f.width, f.height);
+    std::string modes;
+    for (size_t k = 0; k < v.modes.size(); ++k) {
+        char buf[48];
+        std::snprintf(buf, sizeof buf, "%s%.0f (%.0f%%)", k ? ", " : "", v.modes[k],
+                      100 * v.shares[k]);
+        modes += buf;
+    }
+    std::printf(
+        "\n| scene | sky's repeat (offset px) | values at 1/30 blur | their L* (share) "
+        "|\n|---|---:|---:|---|\n");
+    std::printf("| %s | %.2f (%d, %d) | %d | %s |\n", name.c_str(), rep.score, rep.dx, rep.dy,
+                v.values, modes.c_str());
+}
+
 }  // namespace
 
 int run_bench_look(const BenchCommand& cmd) {
@@ -116,6 +138,7 @@ int run_bench_look(const BenchCommand& cmd) {
     (void)tree_px;
     print_crowns_and_palette(cmd.scene + sets, shot, view, f, r.sky);
     print_foreground(cmd.scene + sets, f, l, r.near_ground);
+    print_plan(cmd.scene + sets, f, l, r.sky);
     return 0;
 }
 

@@ -57,8 +57,9 @@ SpriteSet sky_sprites(const Shot& shot, const FrameView& view, const FramePlan& 
             const float a = 2.0f * static_cast<float>(kPi) * label;
             t = glm::vec3(pmath::cos(a), 0.0f, pmath::sin(a));
         }
-        const float half = 0.5f * p.stroke_size * static_cast<float>(kPi / 180.0) *
-                           (small ? 0.5f : 1.0f) * stroke_size_jitter(shader, label);
+        const float stroke_rad = p.stroke_size * static_cast<float>(kPi / 180.0);
+        const float half = 0.5f * stroke_rad * (small ? 0.5f : 1.0f) *
+                           stroke_size_jitter(shader, label) * sky_stroke_scale(p, d, stroke_rad);
         const Projection pe = project(rot, glm::dvec3(glm::normalize(d + t * pmath::tan(half))));
         if (!pe.in_front) continue;
         const float dx = pe.x - pr.x, dy = pe.y - pr.y;
@@ -88,7 +89,8 @@ SpriteSet sky_sprites(const Shot& shot, const FrameView& view, const FramePlan& 
         sp.particle = static_cast<uint32_t>(i);
         sp.k = stroke_constants(shader, 1.0f, 0.0f, 0.5f, label, 0, 1.0f, 0.0f, 0.0f, false, false);
         // Each stroke a little lighter or darker than the field: the brush's own load of paint.
-        const float l = clamp01(s.lightness + p.stroke_jitter * (label_hash(label, 6) - 0.5f));
+        const float l =
+            clamp01(s.lightness + sky_stroke_tone(p, d, stroke_rad, label_hash(label, 6)));
         sp.k.lightness = l;
         const StrokeNoise n = stroke_noise_for(shader, l, 0.0f, label);
         sp.k.frequ_s = n.frequ_s, sp.k.frequ_t = n.frequ_t;

@@ -154,7 +154,18 @@ void visit_sky(SkyDesc& k, V& v) {
     v.real("sun_glow", p.sun_glow, {0, 1}, "lightness", "Lightness added around the sun.");
     v.real("stroke_jitter", p.stroke_jitter, {0, 1}, "lightness",
            "How much lighter or darker than the sky's field a stroke may be (peak to peak, "
-           "drawn from its label): the load of paint varying from stroke to stroke.");
+           "the load of paint varying from touch to touch).");
+    v.real("jitter_coherence", p.jitter_coherence, {0, 1}, "",
+           "Share of stroke_jitter drawn from a field a few strokes across rather than each "
+           "stroke's label: neighbouring touches agree and the sky shimmers in patches; 0: each "
+           "stroke on its own, which reads as a tiled pattern of same-size dabs.");
+    v.real("cloud_masses", p.cloud_masses, {0, 1}, "",
+           "How far the cloud cover rises and falls over the sky's large masses, about two "
+           "across a 45-degree view: clouds gathered into banks and clear reaches between them "
+           "(Corot's few large masses); 0: clouds spread evenly over the sky.");
+    v.real("stroke_variety", p.stroke_variety, {0, 2}, "",
+           "Strokes' size over the sky, 1 -/+ half this, from a field about ten strokes across: "
+           "broad touches in some reaches, finer ones in others; 0: every stroke of stroke_size.");
     v.real("zenith_lightness", p.zenith_lightness, {0, 1}, "lightness",
            "Clear sky straight up (looked up in the palette).");
     v.real("horizon_lightness", p.horizon_lightness, {0, 1}, "lightness",
