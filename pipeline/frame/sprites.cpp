@@ -134,6 +134,9 @@ void shade_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in,
         const float h = S.height(in.index);
         float l = surface_lightness(*m.surface, n_dot_l, h);
         if (in.shadow < 1.0f) l *= shadow_remap(in.shadow, p.shadow_bias);
+        // The tree's shade at its foot: a dark accent there, the palette's darks (never black),
+        // as the sun's shadow remapped could not make it against a lit ground.
+        l *= in.contact;
         out.k.lightness = l;
         surface_frequencies(*m.surface, h, out.k.frequ_s, out.k.frequ_t);
         out.object_id = surface_object_id(S.material[in.index]);

@@ -459,6 +459,28 @@ void visit_scene(SceneDesc& s, V& v) {
         s.sky.present = true;
         visit_sky(s.sky, v);
     });
+    ContactDesc& ct = s.contact;
+    v.object("contact", "Ground touches about each tree's foot, so it stands in the ground", [&] {
+        v.integer("touches", ct.touches, {0, 256},
+                  "Strokes of the ground about a tree of scale 1 (a tree of scale s takes s^2 "
+                  "times as many), laid in a disc about its trunk's base, thinning towards the "
+                  "rim; some stand in front of the trunk's foot and cover it, as a painter "
+                  "sets a tree in the grass (issue 52); 0: none, the trunk ends on the ground "
+                  "as its mesh does.");
+        v.number("radius", ct.radius, {0.05, 100}, "world units",
+                 "Radius of the disc about a tree of scale 1 (times the tree's scale).");
+        v.real("size", ct.size, {0.05, 4}, "",
+               "The touches' size over their material's sprite_size: smaller than the ground's "
+               "own strokes, as the touches at a tree's foot are.");
+        v.real("shade", ct.shade, {0, 1}, "",
+               "Share of their lightness the touches at the trunk lose (the crown's and the "
+               "trunk's shade at its foot), fading to none at the rim: a dark accent from the "
+               "palette's darks, never black.");
+        v.text("material", ct.material_name,
+               "Material of the touches; empty: the terrain's own at each touch, or without "
+               "terrain the scene's \"grass\" material, or else a \"ground\" material of the "
+               "grass shader preset.");
+    });
     v.object("atmosphere", "Atmospheric perspective (IV.6); absent: none", [&] {
         s.has_atmosphere = true;
         v.real("near", s.atmosphere.near_distance, {0, 1e9}, "world units",
@@ -1370,7 +1392,36 @@ void check_world_range(const SceneDesc& s, std::vector<Problem>& problems) {
     }
 }
 
+// The contact touches' material (ContactDesc::material): the named one, the terrain's own at
+// each touch, or the ground material for a scene of trees without terrain. Throws InputError.
+void resolve_contact(const std::string& source, SceneDesc& s) {
+    ContactDesc& c = s.contact;
+    c.material = -1;
+    if (c.touches <= 0 || s.trees.empty()) return;
+    if (!c.material_name.empty()) {
+        std::vector<Problem> problems;
+        c.material = find_material(s, c.material_name, "/contact/material", problems);
+        if (!problems.empty()) throw InputError(source, problems);
+        return;
+    }
+    if (!s.terrain.present) c.material = static_cast<int32_t>(add_ground_material(s, source));
+}
+
 }  // namespace
+
+uint32_t add_ground_material(SceneDesc& s, const std::string& source) {
+    for (size_t i = 0; i < s.materials.size(); ++i)
+        if (s.materials[i].name == "grass" || s.materials[i].name == "ground")
+            return static_cast<uint32_t>(i);
+    Material m;
+    m.name = "ground";
+    const ShaderPreset sp = load_shader_preset("grass", source, "/contact/material");
+    m.shader = sp.params;
+    m.surface = sp.surface;
+    m.palette = shader_palette(load_palette(sp.palette, source, "/contact/material"), m.shader);
+    s.materials.push_back(std::move(m));
+    return static_cast<uint32_t>(s.materials.size() - 1);
+}
 
 SceneDesc parse_scene(const std::string& text, const std::string& source,
                       const std::vector<std::string>& overrides) {
@@ -1442,6 +1493,7 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
     if (!problems.empty()) throw InputError(source, problems);
 
     place_on_ground(s);
+    resolve_contact(source, s);
     // Counted once the groups are scattered, before a tree is grown (each holds megabytes).
     if (s.trees.size() > limits().trees) {
         const bool placed = s.explicit_trees > limits().trees;

@@ -185,6 +185,18 @@ struct Family {
     int members = 0;
 };
 
+// Ground touches about each tree's foot (issue 52 §3): strokes of the ground in a disc around
+// the trunk's base, darker towards it and thinning towards the rim, painted over the foot so the
+// tree stands in the ground instead of floating on the picture. Documented where parsed.
+struct ContactDesc {
+    int touches = 60;     // strokes about a tree of scale 1 (scale^2 times as many); 0: none
+    double radius = 2.0;  // the disc's radius about a tree of scale 1, world units
+    float size = 0.4f;    // the strokes' size over their material's sprite_size
+    float shade = 0.8f;   // light the trunk takes from the touches at its foot, fading outwards
+    std::string material_name;  // empty: the terrain's own, or a ground material (below)
+    int32_t material = -1;      // resolved; -1: the terrain's material at each touch
+};
+
 struct PlacedTree {
     uint32_t family = 0;
     uint64_t seed = 1;
@@ -221,6 +233,7 @@ struct SceneDesc {
     std::vector<MeshFileDesc> meshes;  // glTF surfaces
     std::vector<TreeGroup> groups;
     std::vector<ParticleFileDesc> particles;  // files of particles from other tools
+    ContactDesc contact;
 
     // A camera, a sun or a wind track: frames differ with time (a still camera in the wind has
     // frames too).
@@ -235,6 +248,10 @@ struct SceneDesc {
 // the same picture there as at the origin (tests/pipeline/landscape_test.cpp); beyond it the
 // scene is refused with the key, instead of aborting inside Embree at 1e19.
 inline constexpr double kMaxWorldCoordinate = 1e5;
+
+// The material a scene without terrain paints its trees' feet with: its own "grass" if it
+// has one, else a material named "ground" added from the grass shader preset. Its index.
+uint32_t add_ground_material(SceneDesc& scene, const std::string& source);
 
 // Throws InputError listing every problem (file, JSON pointer, expected, found).
 SceneDesc parse_scene(const std::string& text, const std::string& source,

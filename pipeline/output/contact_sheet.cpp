@@ -14,6 +14,7 @@
 #include "pipeline/input/graftal_io.h"
 #include "pipeline/input/presets.h"
 #include "pipeline/input/shader_io.h"
+#include "pipeline/shot/landscape.h"
 #include "shading/portable_math.h"
 
 namespace pleinair {
@@ -109,8 +110,11 @@ Frame paint_alone(const SceneDesc& scene, const BuiltTree& b, const CameraParams
     SceneDesc s = scene;
     make_camera(cp, s.camera);
     s.camera_params = cp;
+    // The tree stands in the ground as in a scene: touches of it about its foot.
+    auto land = std::make_shared<BuiltLandscape>();
+    add_contact(s, {TreeFoot{b.position, b.scale}}, *land);
     const Shot shot = build_shot(std::move(s), std::make_shared<const std::vector<BuiltTree>>(1, b),
-                                 std::make_shared<const BuiltLandscape>());
+                                 std::move(land));
     return paint_frame(shot, still_view(shot.scene), scene_frame_settings(shot.scene, aovs),
                        report);
 }
@@ -136,6 +140,7 @@ Frame paint_contact_sheet(const Family& family, const std::vector<Tree>& trees,
     scene.build = o.build;
     scene.render = o.render;
     scene.has_atmosphere = false;
+    scene.contact.material = static_cast<int32_t>(add_ground_material(scene, ""));
     const bool bark = o.build.bark_coverage > 0;
     // Cells are independent: painted in parallel (each also parallel inside), each into its own
     // part of the sheet, so the bytes do not depend on threads.

@@ -9,6 +9,7 @@
 
 #include "generators/rock.h"
 #include "pipeline/input/camera_track.h"
+#include "shading/curves.h"
 #include "shading/noise.h"
 #include "shading/portable_math.h"
 
@@ -16,12 +17,15 @@ namespace pleinair {
 
 namespace {
 
-constexpr uint64_t kTerrainKey = 1, kWaterKey = 2, kNearKey = 3, kRockKey = 100,
+constexpr uint64_t kTerrainKey = 1, kWaterKey = 2, kNearKey = 3, kContactKey = 4, kRockKey = 100,
                    kMeshKey = 1ull << 32;
 
 // Near-field strokes are this much smaller than the terrain's own, and a cell of their grid
 // (which holds as many as a section of the terrain) half as wide as a terrain stroke.
 constexpr float kNearStrokeScale = 0.25f;
+
+// Trees whose contact touches share a chunk (add_contact).
+constexpr size_t kContactTrees = 32;
 constexpr double kNearCellScale = 0.5;
 
 // The largest near-field circle the camera carries anywhere, and the ground points (x, z) it
@@ -253,10 +257,87 @@ void add_meshes(const SceneDesc& s, BuiltLandscape& out) {
 
 }  // namespace
 
+void add_contact(const SceneDesc& s, const std::vector<TreeFoot>& feet, BuiltLandscape& out) {
+    const ContactDesc& c = s.contact;
+    if (c.touches <= 0 || feet.empty() || (c.material < 0 && !s.terrain.present)) return;
+    const uint32_t first_material =
+        c.material >= 0 ? static_cast<uint32_t>(c.material) : s.terrain.material;
+    SurfaceStrokeParams p = s.terrain.strokes;  // the ground's heights and displacement
+    p.material = first_material;
+    p.detail_threshold = s.materials[first_material].surface.detail_threshold;
+    const TerrainParams& tp = s.terrain.params;
+    const double level = s.water.present ? s.water.level : -1e300;
+    SurfaceParticles strokes, one;
+    // A chunk per kContactTrees trees: a chunk is what the frame culls whole when it is off
+    // screen or behind the distance circles, so a forest's far feet cost little.
+    auto close_chunk = [&] {
+        if (strokes.size() == 0) return;
+        out.chunk_source.resize(out.chunks.size());
+        out.chunks.push_back(std::move(strokes));
+        out.chunk_size.push_back(c.size);
+        out.chunk_source.push_back({});
+        out.chunk_source.back().contact = true;
+        strokes = SurfaceParticles();
+    };
+    for (size_t i = 0; i < feet.size(); ++i) {
+        if (i % kContactTrees == 0) close_chunk();
+        const TreeFoot& f = feet[i];
+        const double r = c.radius * f.scale;
+        p.particles_per_cluster =
+            std::max(1, static_cast<int>(std::lround(c.touches * f.scale * f.scale)));
+        // One cell of side 2 r per tree (cell (i, 0)), moved onto its foot: the tree's index
+        // keys its touches.
+        const double cell = 2 * r, cx = (static_cast<double>(i) + 0.5) * cell, cz = 0.5 * cell;
+        const GroundAt ground = [&](double x, double z, glm::vec3& pos, glm::vec3& n) {
+            const double dx = x - cx, dz = z - cz;
+            if (pmath::hypot(dx, dz) > r) return false;
+            const double wx = f.position.x + dx, wz = f.position.z + dz;
+            if (!s.terrain.present) {
+                pos = glm::vec3(glm::dvec3(wx, f.position.y, wz));
+                n = glm::vec3(0, 1, 0);
+                return true;
+            }
+            if (wx < tp.min.x || wx > tp.max.x || wz < tp.min.y || wz > tp.max.y) return false;
+            const double h = terrain_height(tp, s.terrain.seed, wx, wz);
+            if (h < level - 0.02) return false;
+            const double d = 0.1 * r;
+            const double hx = terrain_height(tp, s.terrain.seed, wx + d, wz) -
+                              terrain_height(tp, s.terrain.seed, wx - d, wz);
+            const double hz = terrain_height(tp, s.terrain.seed, wx, wz + d) -
+                              terrain_height(tp, s.terrain.seed, wx, wz - d);
+            pos = glm::vec3(glm::dvec3(wx, h, wz));
+            n = glm::vec3(glm::normalize(glm::dvec3(-hx, 2 * d, -hz)));
+            return true;
+        };
+        one = SurfaceParticles();
+        emit_cell_strokes({glm::ivec2(static_cast<int>(i), 0)}, cell, p, s.terrain.seed,
+                          kContactKey, ground, one);
+        for (size_t k = 0; k < one.size(); ++k) {
+            const glm::dvec3 at(one.position[k]);
+            const float q = static_cast<float>(
+                std::min(1.0, pmath::hypot(at.x - f.position.x, at.z - f.position.z) / r));
+            // Thinner towards the rim, by a draw of the label's other digits: no hard edge.
+            const float draw = one.label[k] * 4099.0f - std::floor(one.label[k] * 4099.0f);
+            if (draw < smoothstep(0.6f, 1.0f, q)) continue;
+            one.uv_code[k] = encode_unorm(q);
+            // Broad base strokes lying deep at the foot (inside_growth widens them into a
+            // pool of shade), the grass's tufts standing only towards the rim.
+            one.height_code[k] = encode_unorm(0.3f + 0.5f * q);
+            one.material[k] = static_cast<uint16_t>(c.material >= 0 ? first_material
+                                                                    : terrain_material_at(s, at));
+            strokes.append(one, k, 1);
+        }
+    }
+    close_chunk();
+}
+
 BuiltLandscape build_landscape(const SceneDesc& s) {
     BuiltLandscape out;
     build_surfaces(s, out);
     add_meshes(s, out);
+    std::vector<TreeFoot> feet;
+    for (const PlacedTree& t : s.trees) feet.push_back({t.position, t.scale});
+    add_contact(s, feet, out);
     add_imported(s, out);
     return out;
 }

@@ -33,6 +33,7 @@ struct BuiltLandscape {
         size_t first = 0;
         float color_amount = 0;
         bool casts_shadows = false;  // the file's particles cast the sun's shadows
+        bool contact = false;        // ground touches about trees' feet (add_contact)
     };
     std::vector<ChunkSource> chunk_source;                           // one per chunk
     std::vector<std::shared_ptr<const ImportedParticles>> imported;  // keeps them alive
@@ -49,6 +50,20 @@ struct BuiltLandscape {
 // files' strokes come last, in chunks of kImportedChunk.
 BuiltLandscape build_landscape(const SceneDesc& scene);
 inline constexpr size_t kImportedChunk = 16384;
+
+// A tree's foot: where its trunk meets the ground, and its scale.
+struct TreeFoot {
+    glm::dvec3 position{0.0};
+    double scale = 1;
+};
+
+// The ground touches about trees' feet (SceneDesc::contact): one chunk of strokes of the
+// contact's material (or the terrain's at each touch) in a disc about each foot, standing on the
+// terrain (or at the foot's height without one), thinning towards the rim; each touch's distance
+// from its foot over the disc's radius in its uv's u, which the frame shades by. Keyed by the
+// tree's index, so a tree's touches are the same whatever other trees stand. None without a
+// material for them.
+void add_contact(const SceneDesc& scene, const std::vector<TreeFoot>& feet, BuiltLandscape& out);
 
 // The terrain's material at a world point: the noise picks the second material, a region its
 // own, the bank mask the bank's. Strokes and the underpainting agree through it.

@@ -26,6 +26,11 @@ ParticleInput surface_input(const ParticleSource& shot, size_t chunk, size_t j, 
         if (!from.file->color.empty() && from.color_amount > 0)
             in.own_color = &from.file->color[from.first + j], in.own_amount = from.color_amount;
     }
+    if (from.contact) {
+        // Deep over most of the disc, lifting only towards the rim (1 - q^2).
+        const float q = S.uv(j).x;  // 0 at the foot, 1 at the rim
+        in.contact = 1.0f - clamp01(shot.scene.contact.shade) * (1.0f - q * q);
+    }
     in.normal = lighting_normal(S.normal(j), S.random_normal(j), m.surface->random_normal_weight);
     in.tangent = surface_stroke_direction(*m.surface, S.normal(j), S.height(j));
     in.width = w;

@@ -48,6 +48,9 @@ struct ParticleInput {
     float center_distance = 0.5f, branch_distance = 0.5f, label = 0;
     uint32_t tree_id = 0;
     float shadow = 1;  // light reaching the particle, 0..1 (IV.4.2)
+    // A ground touch at a tree's foot (ContactDesc): the light the tree leaves it, less towards
+    // the trunk; 1 for every other particle.
+    float contact = 1;
     // Surface strokes (IV.7): their own lightness and frequencies, the crest shrink and the
     // distance fade. Null for leaves and bark.
     const SurfaceParticles* surface = nullptr;
