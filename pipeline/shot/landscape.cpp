@@ -26,6 +26,22 @@ constexpr float kNearStrokeScale = 0.25f;
 
 // Trees whose contact touches share a chunk (add_contact).
 constexpr size_t kContactTrees = 32;
+
+// The terrain's point and unit normal (central differences `d` apart) at (x, z), or false off
+// the terrain or under the water: where near-field strokes and contact touches stand.
+bool terrain_point(const SceneDesc& s, double x, double z, double d, glm::vec3& pos, glm::vec3& n) {
+    const TerrainDesc& t = s.terrain;
+    const TerrainParams& p = t.params;
+    if (x < p.min.x || x > p.max.x || z < p.min.y || z > p.max.y) return false;
+    const double h = terrain_height(p, t.seed, x, z);
+    const double level = s.water.present ? s.water.level : -1e300;
+    if (h < level - 0.02) return false;
+    const double dx = terrain_height(p, t.seed, x + d, z) - terrain_height(p, t.seed, x - d, z);
+    const double dz = terrain_height(p, t.seed, x, z + d) - terrain_height(p, t.seed, x, z - d);
+    pos = glm::vec3(glm::dvec3(x, h, z));
+    n = glm::vec3(glm::normalize(glm::dvec3(-dx, 2 * d, -dz)));
+    return true;
+}
 constexpr double kNearCellScale = 0.5;
 
 // The largest near-field circle the camera carries anywhere, and the ground points (x, z) it
@@ -71,18 +87,8 @@ void emit_near_field(const SceneDesc& s, const SurfaceStrokeParams& tp, float si
     }
     std::vector<glm::ivec2> cells;
     for (const auto& [x, z] : picked) cells.push_back({x, z});
-    const double level = s.water.present ? s.water.level : -1e300;
     const GroundAt ground = [&](double x, double z, glm::vec3& pos, glm::vec3& n) {
-        const TerrainParams& p = t.params;
-        if (x < p.min.x || x > p.max.x || z < p.min.y || z > p.max.y) return false;
-        const double h = terrain_height(p, t.seed, x, z);
-        if (h < level - 0.02) return false;
-        const double d = 0.25 * cell;
-        const double dx = terrain_height(p, t.seed, x + d, z) - terrain_height(p, t.seed, x - d, z);
-        const double dz = terrain_height(p, t.seed, x, z + d) - terrain_height(p, t.seed, x, z - d);
-        pos = glm::vec3(glm::dvec3(x, h, z));
-        n = glm::vec3(glm::normalize(glm::dvec3(-dx, 2 * d, -dz)));
-        return true;
+        return terrain_point(s, x, z, 0.25 * cell, pos, n);
     };
     SurfaceParticles strokes;
     emit_cell_strokes(cells, cell, tp, t.seed, kNearKey, ground, strokes);
@@ -265,8 +271,6 @@ void add_contact(const SceneDesc& s, const std::vector<TreeFoot>& feet, BuiltLan
     SurfaceStrokeParams p = s.terrain.strokes;  // the ground's heights and displacement
     p.material = first_material;
     p.detail_threshold = s.materials[first_material].surface.detail_threshold;
-    const TerrainParams& tp = s.terrain.params;
-    const double level = s.water.present ? s.water.level : -1e300;
     SurfaceParticles strokes, one;
     // A chunk per kContactTrees trees: a chunk is what the frame culls whole when it is off
     // screen or behind the distance circles, so a forest's far feet cost little.
@@ -297,17 +301,7 @@ void add_contact(const SceneDesc& s, const std::vector<TreeFoot>& feet, BuiltLan
                 n = glm::vec3(0, 1, 0);
                 return true;
             }
-            if (wx < tp.min.x || wx > tp.max.x || wz < tp.min.y || wz > tp.max.y) return false;
-            const double h = terrain_height(tp, s.terrain.seed, wx, wz);
-            if (h < level - 0.02) return false;
-            const double d = 0.1 * r;
-            const double hx = terrain_height(tp, s.terrain.seed, wx + d, wz) -
-                              terrain_height(tp, s.terrain.seed, wx - d, wz);
-            const double hz = terrain_height(tp, s.terrain.seed, wx, wz + d) -
-                              terrain_height(tp, s.terrain.seed, wx, wz - d);
-            pos = glm::vec3(glm::dvec3(wx, h, wz));
-            n = glm::vec3(glm::normalize(glm::dvec3(-hx, 2 * d, -hz)));
-            return true;
+            return terrain_point(s, wx, wz, 0.1 * r, pos, n);
         };
         one = SurfaceParticles();
         emit_cell_strokes({glm::ivec2(static_cast<int>(i), 0)}, cell, p, s.terrain.seed,
