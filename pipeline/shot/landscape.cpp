@@ -23,6 +23,7 @@ constexpr uint64_t kTerrainKey = 1, kWaterKey = 2, kNearKey = 3, kContactKey = 4
 // Near-field strokes are this much smaller than the terrain's own, and a cell of their grid
 // (which holds as many as a section of the terrain) half as wide as a terrain stroke.
 constexpr float kNearStrokeScale = 0.25f;
+constexpr double kNearCellScale = 0.5;
 
 // Trees whose contact touches share a chunk (add_contact).
 constexpr size_t kContactTrees = 32;
@@ -42,7 +43,6 @@ bool terrain_point(const SceneDesc& s, double x, double z, double d, glm::vec3& 
     n = glm::vec3(glm::normalize(glm::dvec3(-dx, 2 * d, -dz)));
     return true;
 }
-constexpr double kNearCellScale = 0.5;
 
 // The largest near-field circle the camera carries anywhere, and the ground points (x, z) it
 // passes over: the still camera's, or each frame's along the track.
