@@ -44,6 +44,7 @@ enum class Purpose : uint64_t {
     kGraftal = 15,    // graftal sites and tufts, per (object, site, use)
     kImposter = 16,   // graftal imposters: atlas variations, per (row, column)
     kSky = 17,        // the painted sky's strokes, per (layer, row, column)
+    kFigure = 18,     // a figure's touches, per (figure seed, part)
 };
 
 // PCG32 (O'Neill 2014): small state, good statistics, and fully specified, so every platform

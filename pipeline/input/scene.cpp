@@ -264,6 +264,43 @@ void visit_particle_file(ParticleFileDesc& p, V& v) {
               "/terrain). Off: y is the world's.");
 }
 
+const std::pair<FigurePose, const char*> kFigurePoses[] = {{FigurePose::kStanding, "standing"},
+                                                           {FigurePose::kReaching, "reaching"},
+                                                           {FigurePose::kBending, "bending"},
+                                                           {FigurePose::kSeated, "seated"}};
+
+template <class V>
+void visit_figure(FigureDesc& f, V& v) {
+    v.require("position");
+    v.seed("seed", f.seed, "Seeds where its touches fall on the body.");
+    v.vector("position", f.position, "world units",
+             "Where its feet stand; with a terrain, y is the height above the ground.");
+    v.choice("pose", f.params.pose, kFigurePoses,
+             "\"standing\", \"reaching\" (one arm up into a tree's branches, as the woman "
+             "under Mortefontaine's leaning tree), \"bending\" (gathering from the ground) or "
+             "\"seated\" (on the ground, knees raised).");
+    v.number("height", f.params.height, {0.2, 4}, "world units",
+             "Standing height: 1.65 a woman, 1.0-1.3 a child.");
+    v.number("facing", f.params.facing, {-360, 360}, "degrees",
+             "Turn about +y; 0 faces +z (towards a default camera).");
+    v.boolean("dress", f.params.dress, "A long skirt to the ground; false: two legs.");
+    v.color("skin", f.skin, "Face and hands.");
+    v.color("hair", f.hair, "The head's top and back: hair, a cap or a kerchief.");
+    v.color("top", f.top, "Blouse and sleeves.");
+    v.color("bottom", f.bottom,
+            "Skirt or legs. A small red or orange here or in the cap is the one lively colour "
+            "of Corot's late pictures.");
+    v.number("stroke_size", f.params.stroke_size, {0.02, 0.3}, "",
+             "A touch's width over the height: 0.1 paints a woman in about two hundred "
+             "touches, half of them facing away, each limb a few strokes of the brush.");
+    v.number("touches", f.params.touches, {0.1, 4}, "",
+             "Touches per square of a touch's width of body surface: how densely it is painted.");
+    v.text("material", f.material_name,
+           "Material whose stroke shader paints it, each touch in its part's colour at the "
+           "lightness the material's palette gives it; empty: the \"figure\" material (the "
+           "figure shader preset), added when the scene has none.");
+}
+
 template <class V>
 void visit_group(TreeGroup& g, V& v) {
     ScatterParams& p = g.params;
@@ -895,6 +932,15 @@ void parse_landscape(const json& doc, const std::string& source, SceneDesc& s,
                   s.rocks.push_back(rock);
               });
 
+    read_list(doc, "figures", "/figures", problems, plain,
+              [&](const json&, Reader& r, const std::string& ptr) {
+                  FigureDesc f;
+                  visit_figure(f, r);
+                  if (!f.material_name.empty())
+                      f.material = material(f.material_name, ptr + "/material");
+                  s.figures.push_back(f);
+              });
+
     read_list(doc, "meshes", "/meshes", problems, plain,
               [&](const json&, Reader& r, const std::string& ptr) {
                   MeshFileDesc m;
@@ -1286,6 +1332,7 @@ void place_on_ground(SceneDesc& s) {
         };
         for (auto& t : s.trees) t.position.y += ground(t.position.x, t.position.z);
         for (auto& r : s.rocks) r.position.y += ground(r.position.x, r.position.z);
+        for (auto& f : s.figures) f.position.y += ground(f.position.x, f.position.z);
         for (size_t i = 0; i < s.groups.size(); ++i) {
             const TreeGroup& g = s.groups[i];
             for (const ScatteredTree& st :
@@ -1374,6 +1421,9 @@ void check_world_range(const SceneDesc& s, std::vector<Problem>& problems) {
         vec3("/rocks/" + std::to_string(i) + "/position", r.position,
              r.params.radius * std::max({sc.x, sc.y, sc.z}));
     }
+    for (size_t i = 0; i < s.figures.size(); ++i)
+        vec3("/figures/" + std::to_string(i) + "/position", s.figures[i].position,
+             s.figures[i].params.height);
     if (s.terrain.present) {
         const TerrainParams& t = s.terrain.params;
         check("/terrain/min", {t.min.x, t.min.y});
@@ -1407,6 +1457,30 @@ void resolve_contact(const std::string& source, SceneDesc& s) {
     if (!s.terrain.present) c.material = static_cast<int32_t>(add_ground_material(s, source));
 }
 
+// A figure without a named material takes the scene's "figure" material, added from the figure
+// shader preset the first time one is needed.
+void resolve_figures(const std::string& source, SceneDesc& s) {
+    int32_t figure = -1;
+    for (FigureDesc& f : s.figures) {
+        if (f.material >= 0) continue;
+        if (figure < 0) {
+            for (size_t i = 0; i < s.materials.size() && figure < 0; ++i)
+                if (s.materials[i].name == "figure") figure = static_cast<int32_t>(i);
+        }
+        if (figure < 0) {
+            Material m;
+            m.name = "figure";
+            const ShaderPreset sp = load_shader_preset("figure", source, "/figures");
+            m.shader = sp.params;
+            m.surface = sp.surface;
+            m.palette = shader_palette(load_palette(sp.palette, source, "/figures"), m.shader);
+            s.materials.push_back(std::move(m));
+            figure = static_cast<int32_t>(s.materials.size() - 1);
+        }
+        f.material = figure;
+    }
+}
+
 }  // namespace
 
 uint32_t add_ground_material(SceneDesc& s, const std::string& source) {
@@ -1435,7 +1509,7 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
     reader.check_ranges();
     visit_scene(s, reader);
     for (const char* key :
-         {"families", "trees", "materials", "rocks", "meshes", "groups", "particles"})
+         {"families", "trees", "materials", "rocks", "meshes", "groups", "particles", "figures"})
         reader.claim(key);
     reader.finish();
     parse_tracks(doc, s, problems, plain);
@@ -1494,6 +1568,7 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
 
     place_on_ground(s);
     resolve_contact(source, s);
+    resolve_figures(source, s);
     // Counted once the groups are scattered, before a tree is grown (each holds megabytes).
     if (s.trees.size() > limits().trees) {
         const bool placed = s.explicit_trees > limits().trees;
@@ -1580,6 +1655,14 @@ std::string scene_reference() {
              [&] {
                  ParticleFileDesc p;
                  visit_particle_file(p, d);
+             });
+    d.object("figures/N",
+             "A small figure (staffage) painted in a few touches at its place in the world, "
+             "as Corot set a woman gathering or a child at a tree's foot: the picture's scale "
+             "and its warm accent",
+             [&] {
+                 FigureDesc f;
+                 visit_figure(f, d);
              });
     d.object("groups/N", "One group of trees scattered over the terrain (Poisson disk)", [&] {
         TreeGroup g;

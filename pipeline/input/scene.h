@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "generators/figure.h"
 #include "generators/rock.h"
 #include "generators/scatter.h"
 #include "generators/surface_strokes.h"
@@ -197,6 +198,19 @@ struct ContactDesc {
     int32_t material = -1;      // resolved; -1: the terrain's material at each touch
 };
 
+// A figure of the scene's /figures (issue 52 §6): staffage painted in a few touches, standing
+// in the world, so every camera sees it and it holds still in motion. Documented where parsed.
+struct FigureDesc {
+    uint64_t seed = 1;
+    glm::dvec3 position{0.0};  // its feet; with a terrain, y is the height above the ground
+    FigureParams params;       // its colours are set from those below when the shot is built
+    // sRGB, as written: skin, hair (or cap, or kerchief), blouse and sleeves, skirt or legs.
+    glm::vec3 skin{0.77f, 0.56f, 0.42f}, hair{0.24f, 0.19f, 0.15f};
+    glm::vec3 top{0.83f, 0.80f, 0.71f}, bottom{0.27f, 0.26f, 0.23f};
+    std::string material_name;  // empty: the "figure" material (the figure shader preset)
+    int32_t material = -1;      // resolved
+};
+
 struct PlacedTree {
     uint32_t family = 0;
     uint64_t seed = 1;
@@ -234,6 +248,7 @@ struct SceneDesc {
     std::vector<TreeGroup> groups;
     std::vector<ParticleFileDesc> particles;  // files of particles from other tools
     ContactDesc contact;
+    std::vector<FigureDesc> figures;
 
     // A camera, a sun or a wind track: frames differ with time (a still camera in the wind has
     // frames too).

@@ -9,6 +9,7 @@
 
 #include "generators/rock.h"
 #include "pipeline/input/camera_track.h"
+#include "pipeline/shot/figures.h"
 #include "shading/curves.h"
 #include "shading/noise.h"
 #include "shading/portable_math.h"
@@ -187,6 +188,21 @@ void add_imported(const SceneDesc& s, BuiltLandscape& out) {
     }
 }
 
+// A chunk per figure (pipeline/shot/figures.h), painted in its own colours (color_amount 1),
+// casting the sun's shadows.
+void add_figures(const SceneDesc& s, BuiltLandscape& out) {
+    out.chunk_source.resize(out.chunks.size());
+    for (const FigureDesc& f : s.figures) {
+        auto particles = std::make_shared<const ImportedParticles>(
+            figure_particles(f, glm::vec3(s.sun_direction)));
+        if (particles->strokes.size() == 0) continue;
+        out.chunks.push_back(particles->strokes);
+        out.chunk_size.push_back(1.0f);
+        out.chunk_source.push_back({particles.get(), 0, 1.0f, true});
+        out.imported.push_back(std::move(particles));
+    }
+}
+
 void build_surfaces(const SceneDesc& s, BuiltLandscape& out) {
     const float density = s.build.surface_density;
     if (!s.terrain.present) return;
@@ -333,6 +349,7 @@ BuiltLandscape build_landscape(const SceneDesc& s) {
     for (const PlacedTree& t : s.trees) feet.push_back({t.position, t.scale});
     add_contact(s, feet, out);
     add_imported(s, out);
+    add_figures(s, out);
     return out;
 }
 

@@ -47,7 +47,8 @@ struct BuiltLandscape {
 // dropped under water; water strokes only where the ground lies below the level.
 // render.surface_density scales the particles per cluster. A camera with a near field (on
 // `camera` or its track's keys) adds the near field's chunk along its path. The particle
-// files' strokes come last, in chunks of kImportedChunk.
+// files' strokes come next, in chunks of kImportedChunk, and the figures' last, a chunk each
+// (pipeline/shot/figures.h).
 BuiltLandscape build_landscape(const SceneDesc& scene);
 inline constexpr size_t kImportedChunk = 16384;
 

@@ -26,7 +26,9 @@ ShotPlan plan_shot(const SceneDesc& scene, const ShotOptions& options) {
     ShotPlan plan;
     plan.bark = scene.build.bark_coverage > 0;
     const bool meshes = scene.terrain.present || !scene.rocks.empty();
+    // Figures cast the sun's shadows as a particle file's strokes do (pipeline/shot/figures.h).
     const bool casting_particles =
+        !scene.figures.empty() ||
         std::any_of(scene.particles.begin(), scene.particles.end(),
                     [](const ParticleFileDesc& p) { return p.casts_shadows; });
     plan.shadows = scene.sun_casts_shadows && (meshes || !scene.trees.empty() || casting_particles);
