@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "pipeline/bench/crown_look.h"
+#include "pipeline/bench/edge_look.h"
 #include "pipeline/bench/look_measures.h"
 #include "pipeline/bench/mass_look.h"
 #include "pipeline/bench/palette_look.h"
@@ -69,8 +70,9 @@ void print_foreground(const std::string& name, const Frame& f, const std::vector
 // The fourth table: the picture's plan (issue 52 §7): whether the open sky repeats a motif, and
 // the values the frame holds blurred to its masses (mass_look.h).
 void print_plan(const std::string& name, const Frame& f, const std::vector<float>& l,
-                const std::vector<uint8_t>& sky) {
+                const std::vector<uint8_t>& sky, const std::vector<uint8_t>& trees) {
     const RepeatLook rep = texture_repeat(l, f.width, f.height, sky);
+    const EdgeLook edges = edge_look(l, f.width, f.height, trees);
     const ValueMasses v = value_masses(l, f.width, f.height);
     std::string modes;
     for (size_t k = 0; k < v.modes.size(); ++k) {
@@ -81,9 +83,9 @@ void print_plan(const std::string& name, const Frame& f, const std::vector<float
     }
     std::printf(
         "\n| scene | sky's repeat (offset px) | values at 1/30 blur | their L* (share) "
-        "|\n|---|---:|---:|---|\n");
-    std::printf("| %s | %.2f (%d, %d) | %d | %s |\n", name.c_str(), rep.score, rep.dx, rep.dy,
-                v.values, modes.c_str());
+        "| trees' blurred edges (median width px) |\n|---|---:|---:|---|---:|\n");
+    std::printf("| %s | %.2f (%d, %d) | %d | %s | %.2f (%.1f) |\n", name.c_str(), rep.score, rep.dx,
+                rep.dy, v.values, modes.c_str(), edges.blurred_share, edges.median_width);
 }
 
 }  // namespace
@@ -138,7 +140,7 @@ int run_bench_look(const BenchCommand& cmd) {
     (void)tree_px;
     print_crowns_and_palette(cmd.scene + sets, shot, view, f, r.sky);
     print_foreground(cmd.scene + sets, f, l, r.near_ground);
-    print_plan(cmd.scene + sets, f, l, r.sky);
+    print_plan(cmd.scene + sets, f, l, r.sky, r.trees);
     return 0;
 }
 

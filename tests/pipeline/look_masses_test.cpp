@@ -1,10 +1,13 @@
 // The plan's measures (pipeline/bench/mass_look.h) on images whose answer is known: a tiled
-// motif repeats and a 1/f texture does not; three flat masses are three values, a gradient one.
+// motif repeats and a 1/f texture does not; three flat masses are three values, a gradient one;
+// crisp touches have crisp edges and blurred ones blurred edges (pipeline/bench/edge_look.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
+#include "pipeline/bench/edge_look.h"
 #include "pipeline/bench/mass_look.h"
 
 namespace pleinair {
@@ -143,6 +146,89 @@ TEST(MassLook, BlurKeepsTheMeanAndFlattensDetail) {
         vp += (p[i] - mp) * (p[i] - mp), vb += (b[i] - mb) * (b[i] - mb);
     EXPECT_NEAR(mb, mp, 1.0);
     EXPECT_LT(vb, 0.05 * vp);
+}
+
+// Touches: 300 ellipses of random size, angle and L* over a mid ground, each pixel the mean of
+// a 4 x 4 grid of samples (the painter's anti-aliasing), so a crisp edge is a pixel or two wide.
+std::vector<float> touches(uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    struct Touch {
+        float x, y, a, b, c, s, l;
+    };
+    std::vector<Touch> t(300);
+    for (Touch& k : t) {
+        const float ang = 6.2831853f * u(rng);
+        k = {kW * u(rng),   kH * u(rng),   8 + 30 * u(rng), 5 + 12 * u(rng),
+             std::cos(ang), std::sin(ang), 25 + 60 * u(rng)};
+    }
+    // Painted in order into 4 x 4 samples a pixel over each touch's box, then averaged.
+    constexpr int kS = 4;
+    std::vector<float> fine(static_cast<size_t>(kW) * kH * kS * kS, 50.0f);
+    for (const Touch& k : t) {
+        const int x0 = std::max(0, static_cast<int>((k.x - k.a) * kS));
+        const int x1 = std::min(kW * kS, static_cast<int>((k.x + k.a) * kS) + 1);
+        const int y0 = std::max(0, static_cast<int>((k.y - k.a) * kS));
+        const int y1 = std::min(kH * kS, static_cast<int>((k.y + k.a) * kS) + 1);
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) {
+                const float dx = (x + 0.5f) / kS - k.x, dy = (y + 0.5f) / kS - k.y;
+                const float along = dx * k.c + dy * k.s, across = -dx * k.s + dy * k.c;
+                if (along * along / (k.a * k.a) + across * across / (k.b * k.b) < 1)
+                    fine[static_cast<size_t>(y) * kW * kS + x] = k.l;
+            }
+    }
+    std::vector<float> l(static_cast<size_t>(kW) * kH);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            float sum = 0;
+            for (int j = 0; j < kS; ++j)
+                for (int i = 0; i < kS; ++i)
+                    sum += fine[static_cast<size_t>(y * kS + j) * kW * kS + x * kS + i];
+            l[static_cast<size_t>(y) * kW + x] = sum / (kS * kS);
+        }
+    return l;
+}
+
+TEST(EdgeLook, CrispTouchesHaveCrispEdgesAndBlurredOnesBlurredEdges) {
+    const std::vector<float> crisp = touches(5);
+    const EdgeLook c = edge_look(crisp, kW, kH, kAll);
+    EXPECT_GT(c.edges, 5000u);
+    EXPECT_LT(c.blurred_share, 0.1) << c.median_width;
+    EXPECT_LT(c.median_width, 2.0);
+    // Blurred by three box passes of radius 3 (near a Gaussian of sigma 3.5 px): the edges about
+    // 9 px wide (2.56 sigma).
+    const EdgeLook b = edge_look(blur_box3(crisp, kW, kH, 3), kW, kH, kAll);
+    EXPECT_GT(b.edges, 1000u);
+    EXPECT_GT(b.blurred_share, 0.8) << b.median_width;
+    EXPECT_GT(b.median_width, 5.0);
+    EXPECT_LT(b.median_width, 10.0);
+    // A blur of sigma 1 px sits between: wider edges, most still crisp by the gate.
+    const EdgeLook m = edge_look(blur_box3(crisp, kW, kH, 1), kW, kH, kAll);
+    EXPECT_GT(m.median_width, c.median_width);
+    EXPECT_LT(m.median_width, b.median_width);
+}
+
+TEST(EdgeLook, SoftVariationIsNoEdgeAndOnlyTheMaskCounts) {
+    // A gradient and a 1/f texture of small steps: nothing spans the contrast an edge needs.
+    std::vector<float> g(static_cast<size_t>(kW) * kH);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) g[static_cast<size_t>(y) * kW + x] = 20 + 60.0f * x / kW;
+    EXPECT_EQ(edge_look(g, kW, kH, kAll).edges, 0u);
+    // The left half crisp, the right blurred: each half measured alone.
+    std::vector<float> half = touches(6);
+    const std::vector<float> soft = blur_box3(half, kW, kH, 3);
+    for (int y = 0; y < kH; ++y)
+        for (int x = kW / 2; x < kW; ++x)
+            half[static_cast<size_t>(y) * kW + x] = soft[static_cast<size_t>(y) * kW + x];
+    std::vector<uint8_t> left(kAll.size(), 0), right(kAll.size(), 0);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            const size_t i = static_cast<size_t>(y) * kW + x;
+            left[i] = x<kW / 2 - 20, right[i] = x> kW / 2 + 20;
+        }
+    EXPECT_LT(edge_look(half, kW, kH, left).blurred_share, 0.1);
+    EXPECT_GT(edge_look(half, kW, kH, right).blurred_share, 0.8);
 }
 
 }  // namespace

@@ -508,9 +508,10 @@ TEST(Composite, TheUnderpaintingsSharedShadingStaysNearShadingEveryCell) {
 
 // Strokes at least render/one_sample_px wide (the narrower half-width) take one sample a pixel,
 // the feather filtered: none in the golden oak's 256x256 frame (the same bytes), many when the
-// frame is three times larger, with fewer samples then and a picture within 0.5 of a level (RMS,
-// 8-bit; measured 0.34) of every stroke at 4 samples; a threshold past every stroke changes
-// nothing.
+// frame is three times larger, with fewer samples then and a picture within 1.5 levels (RMS,
+// 8-bit) of every stroke at 4 samples: 0.34 measured with corot-leaves' old wide feather, 1.21
+// with its crisp one (issue 52 §2), whose edges one sample anti-aliases less finely; a threshold
+// past every stroke changes nothing.
 TEST(Composite, LargeStrokesTakeOneSample) {
     auto paint = [&](const std::vector<std::string>& sets, float px, FrameReport& report) {
         SceneDesc scene =
@@ -530,7 +531,7 @@ TEST(Composite, LargeStrokesTakeOneSample) {
     ASSERT_EQ(one.size(), every.size());
     const test::ByteDiff d = test::byte_diff(one, every);
     EXPECT_GT(d.differ, one.size() / 100);
-    EXPECT_LE(d.rms, 0.5);
+    EXPECT_LE(d.rms, 1.5);
 }
 
 // The stages under the strokes on their own: the background and the underpainting only where a
