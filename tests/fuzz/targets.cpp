@@ -18,6 +18,7 @@
 #include "pipeline/input/presets.h"
 #include "pipeline/input/scene.h"
 #include "pipeline/input/shader_io.h"
+#include "pipeline/shot/figures.h"
 #include "pipeline/shot/graftal_lod.h"
 #include "pipeline/studio/studio_request.h"
 
@@ -100,6 +101,13 @@ int scene(const uint8_t* data, size_t size) {
         check(s.camera_params.position);
         for (const auto& k : s.camera_track.keys) check(k.position);
         for (const auto& t : s.trees) check(t.position);
+        // A figure accepted is posed into finite touches about its place.
+        for (const auto& f : s.figures) {
+            check(f.position);
+            for (const glm::vec3& q : figure_particles(f, glm::vec3(0, 1, 0)).strokes.position)
+                if (!std::isfinite(q.x + q.y + q.z))
+                    finding("scene", "a figure's touch not finite");
+        }
     });
     return 0;
 }
