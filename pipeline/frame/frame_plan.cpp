@@ -19,12 +19,15 @@ FramePlan plan_frame(const Shot& shot, const FrameSettings& settings) {
         plan.decisions.push_back({name, ran, std::move(why), 0, ""});
     };
     bool tint = false, atmos = false, sub = false;
-    for (const auto& f : scene.families)
-        for (const auto* p : {&f.leaf_shader, &f.bark_shader}) {
-            tint |= p->unique_tint_amt > 0;
-            atmos |= has_atmosphere_effect(*p);
-            sub |= p->sub_stroke_amt > 0 && p->sub_stroke_frequ >= 0;
-        }
+    auto read = [&](const StrokeShaderParams& p) {
+        tint |= p.unique_tint_amt > 0;
+        atmos |= has_atmosphere_effect(p);
+        sub |= p.sub_stroke_amt > 0 && p.sub_stroke_frequ >= 0;
+    };
+    for (const auto& f : scene.families) read(f.leaf_shader), read(f.bark_shader);
+    // The materials' shaders too (ground, water, rocks, particle files, figures): a scene of
+    // land and figures without a tree still takes their sub-strokes, tint and haze.
+    for (const Material& m : scene.materials) read(m.shader);
     if (!shot.sky.direction.empty()) sub |= scene.sky.shader.sub_stroke_amt > 0;
     plan.bark = shot.plan.bark;
     add("bark", plan.bark,

@@ -1442,6 +1442,21 @@ void check_world_range(const SceneDesc& s, std::vector<Problem>& problems) {
     }
 }
 
+// A material named `name` added to the scene from a shader preset and its palette, for the
+// materials pleinair adds itself (the trees' ground, the figures'); its index. A preset that
+// fails to load is refused at `pointer`.
+uint32_t add_preset_material(SceneDesc& s, const std::string& name, const std::string& preset,
+                             const std::string& source, const std::string& pointer) {
+    Material m;
+    m.name = name;
+    const ShaderPreset sp = load_shader_preset(preset, source, pointer);
+    m.shader = sp.params;
+    m.surface = sp.surface;
+    m.palette = shader_palette(load_palette(sp.palette, source, pointer), m.shader);
+    s.materials.push_back(std::move(m));
+    return static_cast<uint32_t>(s.materials.size() - 1);
+}
+
 // The contact touches' material (ContactDesc::material): the named one, the terrain's own at
 // each touch, or the ground material for a scene of trees without terrain. Throws InputError.
 void resolve_contact(const std::string& source, SceneDesc& s) {
@@ -1467,16 +1482,9 @@ void resolve_figures(const std::string& source, SceneDesc& s) {
             for (size_t i = 0; i < s.materials.size() && figure < 0; ++i)
                 if (s.materials[i].name == "figure") figure = static_cast<int32_t>(i);
         }
-        if (figure < 0) {
-            Material m;
-            m.name = "figure";
-            const ShaderPreset sp = load_shader_preset("figure", source, "/figures");
-            m.shader = sp.params;
-            m.surface = sp.surface;
-            m.palette = shader_palette(load_palette(sp.palette, source, "/figures"), m.shader);
-            s.materials.push_back(std::move(m));
-            figure = static_cast<int32_t>(s.materials.size() - 1);
-        }
+        if (figure < 0)
+            figure = static_cast<int32_t>(
+                add_preset_material(s, "figure", "figure", source, "/figures"));
         f.material = figure;
     }
 }
@@ -1487,14 +1495,7 @@ uint32_t add_ground_material(SceneDesc& s, const std::string& source) {
     for (size_t i = 0; i < s.materials.size(); ++i)
         if (s.materials[i].name == "grass" || s.materials[i].name == "ground")
             return static_cast<uint32_t>(i);
-    Material m;
-    m.name = "ground";
-    const ShaderPreset sp = load_shader_preset("grass", source, "/contact/material");
-    m.shader = sp.params;
-    m.surface = sp.surface;
-    m.palette = shader_palette(load_palette(sp.palette, source, "/contact/material"), m.shader);
-    s.materials.push_back(std::move(m));
-    return static_cast<uint32_t>(s.materials.size() - 1);
+    return add_preset_material(s, "ground", "grass", source, "/contact/material");
 }
 
 SceneDesc parse_scene(const std::string& text, const std::string& source,

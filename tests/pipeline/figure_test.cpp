@@ -9,6 +9,7 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 
+#include "pipeline/frame/frame_plan.h"
 #include "pipeline/frame/paint_frame.h"
 #include "pipeline/input/error.h"
 #include "pipeline/input/scene.h"
@@ -193,6 +194,21 @@ TEST(Figure, IsPaintedInItsOwnColoursWhereItStands) {
     // Nowhere else: the red stays on the figure (its box, with a margin for the strokes).
     EXPECT_EQ(red_pixels(with, 0, 0, with.width, y0 - 6), 0);
     for (float v : with.rgba) ASSERT_TRUE(std::isfinite(v));
+}
+
+// The frame's plan reads the materials' shaders as well as the trees': a scene of figures alone
+// takes the figure shader's sub-strokes (they were skipped, no tree asking for them).
+TEST(Figure, AScenesMaterialsAloneAskForTheirSubStrokes) {
+    const std::string figures = R"(, "figures": [{"position": [0, 0, 0]}])";
+    const Shot shot = build_shot(parse_scene(std::string(kScene) + figures + "}", "t"));
+    ASSERT_GT(shot.scene.materials[shot.scene.figures[0].material].shader.sub_stroke_amt, 0);
+    EXPECT_TRUE(plan_frame(shot, scene_frame_settings(shot.scene)).sub_stroke);
+    const Shot flat = build_shot(parse_scene(std::string(kScene) + R"(,
+        "materials": {"figure": {"shader": "figure",
+                                 "shader_keys": {"sub_stroke": {"sub_stroke_amt": 0}}}})" +
+                                                 figures + "}",
+                                             "t"));
+    EXPECT_FALSE(plan_frame(flat, scene_frame_settings(flat.scene)).sub_stroke);
 }
 
 }  // namespace
