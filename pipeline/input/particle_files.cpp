@@ -13,6 +13,15 @@
 
 namespace pleinair {
 
+void push_stroke_keys(SurfaceParticles& s, uint64_t label_hash, Rng& rng) {
+    s.label.push_back((static_cast<float>(label_hash >> 40) + 0.5f) / 16777216.0f);
+    // Uniform on the sphere: z uniform in [-1, 1], angle uniform.
+    const double z = rand_range(rng, -1.0, 1.0), a = rand_range(rng, 0.0, 2 * M_PI);
+    const double r = std::sqrt(std::max(0.0, 1 - z * z));
+    s.random_code.push_back(
+        encode_unit(glm::vec3(glm::dvec3(r * pmath::cos(a), r * pmath::sin(a), z))));
+}
+
 std::vector<std::string> split_names(const std::string& names) {
     std::vector<std::string> out;
     size_t start = 0;
@@ -135,13 +144,8 @@ ImportedParticles import_particles(const std::string& bytes, const std::string& 
             id = static_cast<uint64_t>(l);
         }
         const uint64_t h = hash_keys(file_key, static_cast<uint64_t>(Purpose::kImported), id);
-        s.label.push_back((static_cast<float>(h >> 40) + 0.5f) / 16777216.0f);
-        // A random normal uniform on the sphere (z uniform, angle uniform), from the same key.
-        Rng rng = make_rng(file_key, Purpose::kImported, id);
-        const double z = rand_range(rng, -1.0, 1.0), a = rand_range(rng, 0.0, 2 * M_PI);
-        const double r = std::sqrt(std::max(0.0, 1 - z * z));
-        s.random_code.push_back(
-            encode_unit(glm::vec3(glm::dvec3(r * pmath::cos(a), r * pmath::sin(a), z))));
+        Rng rng = make_rng(file_key, Purpose::kImported, id);  // the random normal, same key
+        push_stroke_keys(s, h, rng);
         s.uv_code.push_back(0);
         s.height_code.push_back(encode_unorm(1.0f));
         uint32_t material = d.material;

@@ -21,6 +21,13 @@ struct ImportedParticles {
     std::vector<Color> color;  // linear RGB; empty: the palette's colour alone
 };
 
+struct Rng;
+
+// Appends an imported stroke's label and random normal (a particle file's, a figure's): the
+// label from the top 24 bits of `label_hash`, in (0, 1) and never either end; the normal
+// uniform on the sphere, two draws of `rng`.
+void push_stroke_keys(SurfaceParticles& strokes, uint64_t label_hash, Rng& rng);
+
 // Which axis of the file is up: y (Houdini, MeshLab, pleinair) or z (Blender).
 enum class UpAxis { kY, kZ };
 

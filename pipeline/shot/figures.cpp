@@ -6,7 +6,6 @@
 #include <glm/geometric.hpp>
 
 #include "generators/rng.h"
-#include "shading/portable_math.h"
 
 namespace pleinair {
 
@@ -23,12 +22,8 @@ ImportedParticles figure_particles(const FigureDesc& f, const glm::vec3& sun) {
         const glm::vec3 n = std::isfinite(t.normal[i].x) ? t.normal[i] : sun;
         s.normal_code.push_back(encode_unit(n));
         const uint64_t h = hash_keys(f.seed, static_cast<uint64_t>(Purpose::kFigure), 1u << 20, i);
-        s.label.push_back((static_cast<float>(h >> 40) + 0.5f) / 16777216.0f);
         Rng rng = make_rng(f.seed, Purpose::kFigure, 1u << 21, i);
-        const double z = rand_range(rng, -1.0, 1.0), a = rand_range(rng, 0.0, 2 * pmath::kPi);
-        const double r = std::sqrt(std::max(0.0, 1 - z * z));
-        s.random_code.push_back(
-            encode_unit(glm::vec3(glm::dvec3(r * pmath::cos(a), r * pmath::sin(a), z))));
+        push_stroke_keys(s, h, rng);
         s.uv_code.push_back(0);
         s.height_code.push_back(encode_unorm(1.0f));
         s.material.push_back(static_cast<uint16_t>(f.material));
