@@ -122,7 +122,8 @@ void emit_surface_strokes(const GridSurface& g, const SurfaceStrokeParams& p, ui
 
 void emit_cell_strokes(const std::vector<glm::ivec2>& cells, double cell,
                        const SurfaceStrokeParams& p, uint64_t seed, uint64_t surface_key,
-                       const GroundAt& ground, SurfaceParticles& out) {
+                       const GroundAt& ground, SurfaceParticles& out, bool on_top,
+                       const StrokeKeep& keep) {
     if (!(cell > 0) || p.particles_per_cluster < 1) return;
     for (const glm::ivec2& c : cells) {
         const uint64_t cx = static_cast<uint32_t>(c.x), cz = static_cast<uint32_t>(c.y);
@@ -137,10 +138,11 @@ void emit_cell_strokes(const std::vector<glm::ivec2>& cells, double cell,
             const bool there = ground(x, z, pos, n);
             const size_t before = out.size();
             emit_one(rng, p, pos, n, {0.0f, 0.0f}, label, out);  // draws the same either way
-            if (!there) {
+            if (!there || (keep && !keep(out, before))) {
                 out.truncate(before);
                 continue;
             }
+            if (!on_top) continue;
             out.height_code[before] = encode_unorm(0.5f + 0.5f * out.height(before));
             out.fade_code[before] = (2u * 16384u) | ((3u * 16384u) << 16);
         }

@@ -111,11 +111,14 @@ using GroundAt = std::function<bool(double x, double z, glm::vec3& position, glm
 // Strokes on a world grid of square cells of side `cell` in (x, z), `params.particles_per_cluster`
 // in each listed cell, keyed by (seed, surface_key, cell x, cell z): a cell's strokes are the
 // same whichever other cells are emitted, so a region can grow without changing the rest. Each
-// stroke's label comes from its key, and none fades with distance (fade_code as a base
-// stroke's); heights lie in the upper half, as detail strokes on top of the surface's own.
+// stroke's label comes from its key. `on_top`: none fades with distance (fade_code as a base
+// stroke's) and heights lie in the upper half, as detail strokes on top of the surface's own;
+// otherwise they are the surface's own strokes, base and detail, fading as emit_surface_strokes'
+// do. `keep`, when given, decides each as emit_surface_strokes' does.
 void emit_cell_strokes(const std::vector<glm::ivec2>& cells, double cell,
                        const SurfaceStrokeParams& params, uint64_t seed, uint64_t surface_key,
-                       const GroundAt& ground, SurfaceParticles& out);
+                       const GroundAt& ground, SurfaceParticles& out, bool on_top = true,
+                       const StrokeKeep& keep = {});
 
 // The same over a quad mesh (rocks, banks): every face is a bilinear patch divided into the
 // params' spans; streams keyed by (seed, surface_key, face, span u, span v).

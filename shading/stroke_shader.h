@@ -62,6 +62,12 @@ struct StrokeShaderParams {
     float size_jitter = 0.25f;   // relative, drawn from the label
     float stroke_aspect = 1.0f;  // length / width; bark strokes are long
     float angle_jitter = 40.0f;  // degrees, drawn from the label
+    // Degrees from upright, counter-clockwise on screen, of the strokes that follow no surface or
+    // limb (leaves): 90 lays them flat, as Corot's foliage "a mass of horizontal strokes".
+    float stroke_angle = 0.0f;
+    // Degrees below horizontal past which a leaf's implied branch falls steeply enough that its
+    // stroke runs down along it instead (a willow's curtains); over 90: none does.
+    float hanging_slope = 91.0f;
     // The crown seen up close (ours, issue 13 §4); 0 leaves the thesis's crown as it is.
     float sun_side = 0.0f;     // lights gather on the crown's sunlit side, darks on the other
     float edge_shrink = 0.0f;  // strokes smaller towards the crown's edge

@@ -6,6 +6,7 @@
 
 #include "pipeline/bench/crown_look.h"
 #include "pipeline/bench/edge_look.h"
+#include "pipeline/bench/grain_look.h"
 #include "pipeline/bench/look_measures.h"
 #include "pipeline/bench/mass_look.h"
 #include "pipeline/bench/palette_look.h"
@@ -50,8 +51,9 @@ void print_crowns_and_palette(const std::string& name, const Shot& shot, const F
         100 * p.lightness[2], 100 * p.lightness[3], 100 * p.lightness[4]);
 }
 
-// The third table: the near ground's brush (issue 27 §4): its texture at the two scales, and
-// the share of it left smooth (kSmoothSpread), the inside of soft blobs.
+// The third table: the near ground's brush (issue 27 §4): its texture at the two scales, the
+// share of it left smooth (kSmoothSpread), the inside of soft blobs, and its grain (issue 52
+// §3, grain_look.h): touches laid along the land against round spots.
 void print_foreground(const std::string& name, const Frame& f, const std::vector<float>& l,
                       const std::vector<uint8_t>& near) {
     uint64_t px = 0;
@@ -59,21 +61,26 @@ void print_foreground(const std::string& name, const Frame& f, const std::vector
     const double t5 = brush_texture(l, f.width, f.height, near, 2);
     const double t17 = brush_texture(l, f.width, f.height, near, 8);
     const double smooth = smooth_share(l, f.width, f.height, near, 2, kSmoothSpread);
+    const GrainLook grain = grain_look(l, f.width, f.height, near);
     std::printf(
         "\n| scene | near ground (within %.0f m): pixels | L* texture 5 px / 17 px | smooth "
-        "share (5 px windows under %.1f L*) |\n|---|---:|---:|---:|\n",
-        kNearGround, kSmoothSpread);
-    std::printf("| %s | %llu | %.2f / %.2f | %.3f |\n", name.c_str(),
-                static_cast<unsigned long long>(px), t5, t17, smooth);
+        "share (5 px windows under %.1f L*) | grain: edges within %.0f deg of horizontal "
+        "(round spots 0.33) / coherence (angle) |\n|---|---:|---:|---:|---:|\n",
+        kNearGround, kSmoothSpread, kGrainTolerance);
+    std::printf("| %s | %llu | %.2f / %.2f | %.3f | %.2f / %.2f (%.0f) |\n", name.c_str(),
+                static_cast<unsigned long long>(px), t5, t17, smooth, grain.horizontal,
+                grain.coherence, grain.angle);
 }
 
-// The fourth table: the picture's plan (issue 52 §7): whether the open sky repeats a motif, and
-// the values the frame holds blurred to its masses (mass_look.h).
+// The fourth table: the picture's plan (issue 52 §7): whether the open sky repeats a motif, the
+// values the frame holds blurred to its masses (mass_look.h), whether the crowns' touches keep
+// an edge (edge_look.h) and which way they run (grain_look.h).
 void print_plan(const std::string& name, const Frame& f, const std::vector<float>& l,
                 const std::vector<uint8_t>& sky, const std::vector<uint8_t>& trees) {
     const RepeatLook rep = texture_repeat(l, f.width, f.height, sky);
     const EdgeLook edges = edge_look(l, f.width, f.height, trees);
     const ValueMasses v = value_masses(l, f.width, f.height);
+    const GrainLook grain = grain_look(l, f.width, f.height, trees);
     std::string modes;
     for (size_t k = 0; k < v.modes.size(); ++k) {
         char buf[48];
@@ -83,9 +90,12 @@ void print_plan(const std::string& name, const Frame& f, const std::vector<float
     }
     std::printf(
         "\n| scene | sky's repeat (offset px) | values at 1/30 blur | their L* (share) "
-        "| trees' blurred edges (median width px) |\n|---|---:|---:|---|---:|\n");
-    std::printf("| %s | %.2f (%d, %d) | %d | %s | %.2f (%.1f) |\n", name.c_str(), rep.score, rep.dx,
-                rep.dy, v.values, modes.c_str(), edges.blurred_share, edges.median_width);
+        "| trees' blurred edges (median width px) | trees' grain: edges within %.0f deg of "
+        "horizontal / coherence |\n|---|---:|---:|---|---:|---:|\n",
+        kGrainTolerance);
+    std::printf("| %s | %.2f (%d, %d) | %d | %s | %.2f (%.1f) | %.2f / %.2f |\n", name.c_str(),
+                rep.score, rep.dx, rep.dy, v.values, modes.c_str(), edges.blurred_share,
+                edges.median_width, grain.horizontal, grain.coherence);
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 // plan_frame: every decision of a frame, from the shot's plan and the frame settings.
 #include "pipeline/frame/frame_plan.h"
 
+#include <cstdio>
+
 #include "pipeline/frame/frame_view.h"
 #include "pipeline/frame/occlusion_map.h"
 #include "pipeline/shot/shot.h"
@@ -70,9 +72,14 @@ FramePlan plan_frame(const Shot& shot, const FrameSettings& settings) {
             ? std::string("the sun moves: its scene is built for this frame; ") + where
             : std::string("the sun casts shadows through the stroke casters: ") + where);
     plan.underpaint = shot.plan.underpaint;
+    std::string under = "terrain or rocks are visible: flat colour and depth under the strokes";
+    if (const float tone = settings.render.underpaint_tone_amount; tone > 0) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, ", taken %.2g of the way to the lay-in's tone", tone);
+        under += buf;
+    }
     add("underpaint", plan.underpaint,
-        plan.underpaint ? "terrain or rocks are visible: flat colour and depth under the strokes"
-                        : "no visible mesh (no terrain, no rocks)");
+        plan.underpaint ? under : "no visible mesh (no terrain, no rocks)");
     // A map costs a ray a texel per camera of the seen window; it saves at most a ray a stroke
     // it answers, and on open ground it is unsure of most (BENCHMARKS.md, "Occlusion maps"):
     // drawn where the shot holds at least kMapsPay strokes a texel ray.

@@ -100,12 +100,16 @@ bool place_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in,
         static_cast<float>(c.eye_speed * pmath::hypot(out.half_w, out.half_l) / c.cam.focal_px) +
         in.wind_speed;
     // Stroke direction on screen: along the projected tangent (a normal-free frame, so a limb
-    // seen end-on still gets one), jittered by the label.
+    // seen end-on still gets one), else the shader's stroke_angle; jittered by the label.
     double angle = 0;
     if (glm::dot(in.tangent, in.tangent) > 0) {
         glm::dvec3 t(in.tangent);
         double tx = glm::dot(t, c.cam.right), ty = -glm::dot(t, c.cam.up);
         if (tx * tx + ty * ty > 1e-8) angle = pmath::atan2(ty, tx) - 0.5 * M_PI;
+    } else {
+        // The sprite's axis (-sin a, cos a) runs down the screen at a = 0; a turn by -a is
+        // counter-clockwise as the viewer sees it (rows run down).
+        angle = -static_cast<double>(p.stroke_angle) * M_PI / 180.0;
     }
     angle += stroke_angle_jitter(p, in.label) + in.spin;
     out.ax = static_cast<float>(-pmath::sin(angle));

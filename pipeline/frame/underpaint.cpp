@@ -58,7 +58,13 @@ Color underpaint_color(const Shot& shot, const FrameView& view, const FramePlan&
         mirror(mirrors, RayOrigin{world, s.n, true, shot.surface_lift}, &s.n, 1, s.n, dir,
                glm::length(world - view.camera.eye), s.k);
     if (seen) *seen = s;
-    return finish_color(s.k, s.base);
+    // The lay-in's own tone under a dry surface's colour, before finish_color's atmosphere, so a
+    // far surface's underpaint still goes into the haze; water keeps its mirror.
+    Color base = s.base;
+    if (rs.underpaint_tone_amount > 0.0f && !s.water)
+        base = mix(base, srgb_to_linear(Color(rs.underpaint_tone)),
+                   std::clamp(rs.underpaint_tone_amount, 0.0f, 1.0f));
+    return finish_color(s.k, base);
 }
 
 namespace {

@@ -101,6 +101,10 @@ void visit_region(MaterialRegion& r, V& v) {
     v.number("radius", r.radius, {0, 1e9}, "world units",
              "Its radius; the rim wanders between 0.75 and 1.25 of it, by noise.");
     v.text("material", r.material_name, "Material of the ground's strokes inside it.");
+    v.number("density", r.density, {0.25, 16}, "",
+             "Its strokes per area over the terrain's, each smaller by the square root so they "
+             "cover as much: a near meadow painted in more, smaller touches than the land "
+             "beyond (a painter's foreground), without more strokes anywhere else.");
 }
 
 template <class V>
@@ -582,6 +586,15 @@ void visit_scene(SceneDesc& s, V& v) {
         v.real("underpaint_scale", r.underpaint_scale, {0.05, 1}, "",
                "Resolution of the underpainting (flat colour under the strokes) over the "
                "image's.");
+        v.color("underpaint_tone", r.underpaint_tone,
+                "Colour of the lay-in under the strokes (sRGB): Corot's warm, translucent "
+                "brown underpaint over everything but the sky, which shows where the touches "
+                "leave the ground open and through their thin edges (issue 52).");
+        v.real("underpaint_tone_amount", r.underpaint_tone_amount, {0, 1}, "",
+               "How far the underpainting's flat colour of each surface (its palette's middle "
+               "value in its light) is taken towards underpaint_tone, before the atmosphere, so "
+               "a far surface's lay-in still goes into the haze; still water keeps its mirror. "
+               "0: the surfaces' own colours.");
         v.real("coverage_cutoff", r.coverage_cutoff, {0, 0.1}, "",
                "Strokes are composited nearest first; once less than this much light is left at "
                "a pixel, the strokes behind are skipped there (each changes it by less than "

@@ -86,6 +86,7 @@ struct MaterialRegion {
     double radius = 10;
     std::string material_name;
     uint32_t material = 0;
+    double density = 1;  // strokes per area over the terrain's; they shrink to keep its cover
 };
 
 // The ground: a heightfield turned into strokes. Its material comes from noise (grass and

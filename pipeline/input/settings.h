@@ -2,6 +2,8 @@
 // RenderSettings only how a frame is painted from it, so no frame setting rebuilds anything.
 #pragma once
 
+#include <glm/vec3.hpp>
+
 namespace pleinair {
 
 // How a shadow ray treats stroke casters: the opacity of the first card decides (above one
@@ -40,6 +42,11 @@ struct RenderSettings {
     ShadowMode shadows = ShadowMode::kTransmissive;
     ShadowSamples shadow_samples = ShadowSamples::kParticle;
     float underpaint_scale = 0.5f;  // underpainting resolution over the image's
+    // The underpainting's own colour (Corot's warm, translucent brown lay-in under everything
+    // but the sky, issue 52 section 3), sRGB, and how far each surface's flat colour is taken
+    // towards it before the atmosphere; 0 keeps the surfaces' own colours.
+    glm::vec3 underpaint_tone{0.35f, 0.27f, 0.18f};
+    float underpaint_tone_amount = 0.0f;
     // Light left at a pixel below which the strokes behind are not painted (front to back); 0
     // paints every stroke.
     float coverage_cutoff = 1.0f / 2048.0f;

@@ -101,6 +101,14 @@ void visit_stroke_shader(P& p, V& v) {
                "Length over width; bark strokes lie along their limb.");
         v.real("angle_jitter", p.angle_jitter, {0, 180}, "deg",
                "Rotation variation of the stroke on screen, by label.");
+        v.real("stroke_angle", p.stroke_angle, {-180, 180}, "deg",
+               "Direction on screen of the strokes that follow no surface or limb (leaves), "
+               "counter-clockwise from upright: 0 stands them up, 90 lays them flat, as the "
+               "foliage of Corot's Souvenir of Coubron, \"a mass of horizontal strokes\".");
+        v.real("hanging_slope", p.hanging_slope, {0, 91}, "deg",
+               "A leaf whose implied branch falls more steeply than this below horizontal has "
+               "its stroke run down along that branch on screen instead of at stroke_angle: a "
+               "willow's curtains in falling strokes among a crown's flat ones; 91: none.");
     });
     v.object("crown", "A crown seen up close (leaf strokes; ours, past the thesis)", [&] {
         v.real("sun_side", p.sun_side, {0, 1}, "",

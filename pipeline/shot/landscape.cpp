@@ -19,7 +19,7 @@ namespace pleinair {
 namespace {
 
 constexpr uint64_t kTerrainKey = 1, kWaterKey = 2, kNearKey = 3, kContactKey = 4, kRockKey = 100,
-                   kMeshKey = 1ull << 32;
+                   kMeshKey = 1ull << 32, kRegionKey = 1ull << 33;
 
 // Near-field strokes are this much smaller than the terrain's own, and a cell of their grid
 // (which holds as many as a section of the terrain) half as wide as a terrain stroke.
@@ -28,6 +28,12 @@ constexpr double kNearCellScale = 0.5;
 
 // Trees whose contact touches share a chunk (add_contact).
 constexpr size_t kContactTrees = 32;
+
+// Whether the bank mask paints the ground at `world` (it wins over the regions).
+bool on_bank(const SceneDesc& s, const glm::dvec3& world) {
+    const TerrainDesc& t = s.terrain;
+    return t.bank_material >= 0 && s.water.present && world.y < s.water.level + t.bank_height;
+}
 
 // The terrain's point and unit normal (central differences `d` apart) at (x, z), or false off
 // the terrain or under the water: where near-field strokes and contact touches stand.
@@ -101,6 +107,54 @@ void emit_near_field(const SceneDesc& s, const SurfaceStrokeParams& tp, float si
     out.chunk_size.push_back(size * kNearStrokeScale);
 }
 
+// The region at `world` when it paints the ground at its own density, else -1.
+int dense_region(const SceneDesc& s, const glm::dvec3& world) {
+    const int r = terrain_region_at(s, world);
+    return r >= 0 && s.terrain.regions[static_cast<size_t>(r)].density != 1 ? r : -1;
+}
+
+// The strokes of the regions with a density of their own, in place of the terrain's there: on
+// a world grid of cells as large as a terrain section, each holding the section's count of
+// strokes, the cells shrunk by the square root of the density and the strokes with them (the
+// same cover), each kept where its region paints the ground (later regions and the bank win).
+// A band of kRows rows of cells makes a chunk.
+void emit_regions(const SceneDesc& s, const SurfaceStrokeParams& tp, float size,
+                  BuiltLandscape& out) {
+    constexpr int kRows = 8;
+    const TerrainDesc& t = s.terrain;
+    const glm::dvec2 extent = t.params.max - t.params.min;
+    const double section = std::sqrt(extent.x / std::max(tp.particle_spans_u, 1) * extent.y /
+                                     std::max(tp.particle_spans_v, 1));
+    for (size_t ri = 0; ri < t.regions.size(); ++ri) {
+        const MaterialRegion& r = t.regions[ri];
+        if (r.density == 1 || !(section > 0)) continue;
+        const double cell = section / std::sqrt(r.density), reach = 1.25 * r.radius;
+        const int x0 = static_cast<int>(std::floor((r.center.x - reach) / cell));
+        const int x1 = static_cast<int>(std::floor((r.center.x + reach) / cell));
+        const int z0 = static_cast<int>(std::floor((r.center.y - reach) / cell));
+        const int z1 = static_cast<int>(std::floor((r.center.y + reach) / cell));
+        const GroundAt ground = [&](double x, double z, glm::vec3& pos, glm::vec3& n) {
+            return terrain_point(s, x, z, 0.25 * cell, pos, n);
+        };
+        const StrokeKeep keep = [&](SurfaceParticles& p, size_t i) {
+            if (dense_region(s, glm::dvec3(p.position[i])) != static_cast<int>(ri)) return false;
+            p.material[i] = static_cast<uint16_t>(r.material);
+            return true;
+        };
+        for (int zb = z0; zb <= z1; zb += kRows) {
+            std::vector<glm::ivec2> cells;
+            for (int z = zb; z <= std::min(zb + kRows - 1, z1); ++z)
+                for (int x = x0; x <= x1; ++x) cells.push_back({x, z});
+            SurfaceParticles strokes;
+            emit_cell_strokes(cells, cell, tp, t.seed, kRegionKey + ri, ground, strokes, false,
+                              keep);
+            if (strokes.size() == 0) continue;
+            out.chunks.push_back(std::move(strokes));
+            out.chunk_size.push_back(size / static_cast<float>(std::sqrt(r.density)));
+        }
+    }
+}
+
 // The scene's stroke parameters with the material's detail threshold and the density applied.
 SurfaceStrokeParams strokes_for(const SurfaceStrokeParams& in, const Material& m, uint32_t index,
                                 float density, float& size) {
@@ -154,18 +208,25 @@ uint32_t terrain_material_at(const SceneDesc& s, const glm::dvec3& world) {
     if (t.second_material >= 0 &&
         noise_material(u, v, t.material_noise_frequency, t.material_threshold, offset))
         m = static_cast<uint32_t>(t.second_material);
-    for (const MaterialRegion& r : t.regions) {
+    if (on_bank(s, world)) return static_cast<uint32_t>(t.bank_material);
+    const int r = terrain_region_at(s, world);
+    return r >= 0 ? t.regions[static_cast<size_t>(r)].material : m;
+}
+
+int terrain_region_at(const SceneDesc& s, const glm::dvec3& world) {
+    if (on_bank(s, world)) return -1;
+    const std::vector<MaterialRegion>& regions = s.terrain.regions;
+    for (size_t i = regions.size(); i-- > 0;) {
+        const MaterialRegion& r = regions[i];
         // The rim wanders by a quarter of the radius (slow noise), so a region reads as a
         // patch of ground, not a drawn circle.
         const double d = pmath::hypot(world.x - r.center.x, world.z - r.center.y) / r.radius;
         const float rim =
             0.75f + 0.5f * noise(static_cast<float>(world.x - r.center.x) * 0.35f + 31.7f,
                                  static_cast<float>(world.z - r.center.y) * 0.35f + 11.3f);
-        if (d < rim) m = r.material;
+        if (d < rim) return static_cast<int>(i);
     }
-    if (t.bank_material >= 0 && s.water.present && world.y < s.water.level + t.bank_height)
-        m = static_cast<uint32_t>(t.bank_material);
-    return m;
+    return -1;
 }
 
 namespace {
@@ -218,9 +279,11 @@ void build_surfaces(const SceneDesc& s, BuiltLandscape& out) {
     emit_bands(grid, tp, t.seed, kTerrainKey, size, out, [&](SurfaceParticles& p, size_t i) {
         const glm::vec3& ground = p.position[i];
         if (s.water.present && ground.y < level - 0.02) return false;
+        if (dense_region(s, glm::dvec3(ground)) >= 0) return false;  // emit_regions' ground
         p.material[i] = static_cast<uint16_t>(terrain_material_at(s, glm::dvec3(ground)));
         return true;
     });
+    emit_regions(s, tp, size, out);
     emit_near_field(s, tp, size, out);
 
     if (s.water.present) {

@@ -70,4 +70,8 @@ void add_contact(const SceneDesc& scene, const std::vector<TreeFoot>& feet, Buil
 // own, the bank mask the bank's. Strokes and the underpainting agree through it.
 uint32_t terrain_material_at(const SceneDesc& scene, const glm::dvec3& world);
 
+// The index in /terrain/regions of the region that paints the ground at a world point (the
+// last whose wandering rim holds it), or -1: none, or the bank mask wins.
+int terrain_region_at(const SceneDesc& scene, const glm::dvec3& world);
+
 }  // namespace pleinair

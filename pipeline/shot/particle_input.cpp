@@ -70,6 +70,11 @@ ParticleInput particle_input(const ParticleSource& shot, size_t item, SpriteKind
     } else {
         const LeafParticles& L = b.tree().leaves;
         in.normal = pl.turn(L.normal[j]);
+        // A falling twig's leaves are painted down along it (shader's hanging_slope); the rest
+        // take the shader's stroke_angle (sprites.cpp: no tangent).
+        if (p.hanging_slope <= 90.0f &&
+            -in.normal.y > pmath::sin(static_cast<double>(p.hanging_slope) * M_PI / 180.0))
+            in.tangent = in.normal;
         in.center_distance = L.center_distance[j];
         in.branch_distance = L.branch_distance[j];
         in.label = L.label[j];

@@ -123,6 +123,70 @@ TEST(Landscape, RegionsPaintTheirDiscWithTheirMaterial) {
     EXPECT_NE(terrain_material_at(s, {-30, 5, 60}), s.rocks[0].material);  // 30 away: > 1.25 r
 }
 
+// A region with a density of its own paints its ground in that many times the strokes a
+// square metre, each smaller by the square root (the same cover), in place of the terrain's own
+// there and nowhere else; the rest of the terrain keeps its strokes, the same bytes.
+TEST(Landscape, ADenseRegionPaintsItsGroundInMoreSmallerStrokes) {
+    const char* kRegion =
+        R"(/terrain/regions=[{"center": [-20, -40], "radius": 20, "material": "meadow"%s}])";
+    auto scene = [&](const char* density) {
+        char buf[256];
+        std::snprintf(buf, sizeof buf, kRegion, density);
+        return parse_scene(landscape(kSun), "test",
+                           {R"(/materials/meadow={"shader": "grass", "palette": "corot-bank"})",
+                            buf, "/contact/touches=0"});  // the group's trees' feet stand in it
+    };
+    const SceneDesc plain = scene(""), dense = scene(R"(, "density": 4)");
+    ASSERT_EQ(dense.terrain.regions[0].density, 4.0);
+    const uint16_t meadow = static_cast<uint16_t>(dense.terrain.regions[0].material);
+    const BuiltLandscape a = build_landscape(plain), b = build_landscape(dense);
+    // Strokes and their summed area (size squared) inside the region, and the others' keys.
+    struct Count {
+        size_t n = 0;
+        double area = 0;
+        std::multiset<std::tuple<float, float, float, uint16_t>> outside;
+    };
+    auto count = [&](const BuiltLandscape& land) {
+        Count c;
+        for (size_t k = 0; k < land.chunks.size(); ++k) {
+            const SurfaceParticles& S = land.chunks[k];
+            for (size_t i = 0; i < S.size(); ++i) {
+                const glm::vec3& p = S.position[i];
+                if (S.material[i] == meadow && terrain_region_at(dense, glm::dvec3(p)) == 0) {
+                    ++c.n;
+                    c.area += double(land.chunk_size[k]) * land.chunk_size[k];
+                } else {
+                    c.outside.insert({p.x, p.y, p.z, S.material[i]});
+                }
+            }
+        }
+        return c;
+    };
+    const Count ca = count(a), cb = count(b);
+    ASSERT_GT(ca.n, 100u);
+    // Both are random samples of the disc (398 and 1,596 strokes): within 10%.
+    EXPECT_NEAR(double(cb.n) / double(ca.n), 4.0, 0.4) << ca.n << " " << cb.n;
+    EXPECT_NEAR(cb.area / ca.area, 1.0, 0.1);
+    // Every stroke outside the region is one the plain terrain had, and none is lost.
+    EXPECT_TRUE(ca.outside == cb.outside);
+    // No stroke of the region's material stands outside its wandering rim.
+    for (const SurfaceParticles& S : b.chunks)
+        for (size_t i = 0; i < S.size(); ++i)
+            if (S.material[i] == meadow &&
+                std::hypot(S.position[i].x + 20.0, S.position[i].z + 40.0) > 1.25 * 20.0 + 1e-3) {
+                ADD_FAILURE() << "a region's stroke outside it";
+                break;
+            }
+    // A density out of range is refused with its key.
+    try {
+        scene(R"(, "density": 100)");
+        ADD_FAILURE() << "density 100 accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("/terrain/regions/0/density"), std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(Landscape, ShadowSceneOnlyWhenTheSunCastsShadows) {
     FrameReport with, without, trees_only;
     SceneDesc lit = parse_scene(landscape(kSun), "test");

@@ -207,6 +207,61 @@ TEST(Sprites, EveryParticleIsASpriteOrCulled) {
     EXPECT_EQ(none.sprites.size(), 0u);
 }
 
+// Leaf strokes that follow no limb lie at their shader's stroke_angle on screen, within its
+// angle_jitter: corot-leaves lays them flat (90, within 25 degrees either way), so every one
+// not on a falling twig has its axis within 25 degrees of horizontal. A leaf whose implied
+// branch falls more steeply than hanging_slope (corot-leaves: 40 degrees) is painted down
+// along it: a willow's curtains, whose strokes run mostly up and down the screen (their mean
+// |axis y| measured 0.91). With stroke_angle 0 and no hanging slope every stroke stands upright.
+TEST(Sprites, LeafStrokesLieAtTheirAngleAndFallingTwigsLeavesRunDownThem) {
+    auto sprites = [&](const std::vector<std::string>& sets) {
+        const SceneDesc scene = parse_scene(
+            R"({"camera": {"position": [0, 5, 24], "look_at": [0, 5, 0], "fov": 45,
+                           "width": 160, "height": 160},
+                "families": {"willow": {"preset": "willow"}},
+                "trees": [{"family": "willow", "seed": 2, "position": [0, 0, 0]}]})",
+            "test", sets);
+        auto shot = std::make_shared<const Shot>(build_shot(scene));
+        const FrameSettings settings = scene_frame_settings(shot->scene);
+        const FramePlan plan = plan_frame(*shot, settings);
+        const FrameView view = still_view(shot->scene);
+        const FrameLod lod = level_of_detail(*shot, view, settings.render);
+        return std::pair{shot, make_sprites({*shot, view, plan, settings.render, lod, nullptr})};
+    };
+    const float kJitter = std::sin(25.5f * 0.017453292f);
+    {
+        const auto [shot, set] = sprites({});
+        const float hang = std::sin(40.0f * 0.017453292f);
+        size_t flat = 0, hanging = 0;
+        double hanging_ay = 0;
+        for (const Sprite& sp : set.sprites) {
+            if (sp.kind != SpriteKind::kLeaf) continue;
+            const BuiltTree& b = (*shot->trees)[sp.item];
+            const glm::vec3 n = b.tree().leaves.normal[sp.particle];  // no turn: rotation 0
+            if (-n.y > hang) {
+                ++hanging;
+                hanging_ay += std::abs(sp.ay);
+            } else {
+                ++flat;
+                ASSERT_LE(std::abs(sp.ay), kJitter) << sp.ax << " " << sp.ay;
+            }
+        }
+        EXPECT_GT(flat, 200u);  // measured 303 of the willow's 1,551 leaves seen
+        ASSERT_GT(hanging, 1000u);
+        EXPECT_GT(hanging_ay / double(hanging), 0.8);
+    }
+    const auto [shot, upright] =
+        sprites({R"(/families/willow/leaf_shader_keys={"sprite": {"stroke_angle": 0,
+                                                                   "hanging_slope": 91}})"});
+    size_t leaves = 0;
+    for (const Sprite& sp : upright.sprites) {
+        if (sp.kind != SpriteKind::kLeaf) continue;
+        ++leaves;
+        ASSERT_LE(std::abs(sp.ax), kJitter) << sp.ax << " " << sp.ay;
+    }
+    EXPECT_GT(leaves, 600u);
+}
+
 TEST(Sprites, PartlyHiddenStrokesAreDrawnByTheShareSeen) {
     // Without circles a tree's strokes are whole, unless the camera sees only the top of them
     // past a crest or a trunk: then a third or two (of three rays), never culled outright.
@@ -461,6 +516,16 @@ TEST(Shot, AMovingSunCastsItsShadowsPerFrame) {
     EXPECT_TRUE(same_pixels(early, paint(build_shot(still))));
 }
 
+// A stroke layer without a stroke: every pixel lets all the light through to what lies under.
+StrokeLayer open_layer(const Camera& cam) {
+    const size_t npix = static_cast<size_t>(cam.width) * cam.height;
+    StrokeLayer open;
+    open.width = cam.width, open.height = cam.height, open.cutoff = 1.0f / 2048;
+    open.color.assign(3 * npix, 0.0f);
+    open.through.assign(npix, 1.0f);
+    return open;
+}
+
 // The underpainting shades every other cell each way and gives a cell between them their mean
 // where they see one surface in one light and colour: against shading every cell, on the small
 // Mortefontaine (pond, trees, shadows) and the small forest's edge at 768x432 seen wholly open
@@ -476,11 +541,7 @@ TEST(Composite, TheUnderpaintingsSharedShadingStaysNearShadingEveryCell) {
         const Camera& cam = view.camera;
         FrameSettings settings = scene_frame_settings(shot.scene);
         const FramePlan plan = plan_frame(shot, settings);
-        const size_t npix = static_cast<size_t>(cam.width) * cam.height;
-        StrokeLayer open;
-        open.width = cam.width, open.height = cam.height, open.cutoff = 1.0f / 2048;
-        open.color.assign(3 * npix, 0.0f);
-        open.through.assign(npix, 1.0f);
+        const StrokeLayer open = open_layer(cam);
         Frame shared = make_frame(cam, false), every = make_frame(cam, false);
         const UnderpaintRays a = paint_underpainting(shot, view, plan, settings.render,
                                                      shot.sun_rays.get(), open, shared);
@@ -504,6 +565,52 @@ TEST(Composite, TheUnderpaintingsSharedShadingStaysNearShadingEveryCell) {
         EXPECT_LE(sum / diff.size(), 0.001) << name;
         EXPECT_LE(p999, 0.02f) << name;
     }
+}
+
+// The lay-in's tone (issue 52 section 3): render/underpaint_tone_amount takes every dry
+// surface's flat colour towards render/underpaint_tone before the atmosphere, and leaves the
+// still water its mirror. On the small Mortefontaine at 192x108, wholly open: at amount 1 with
+// a red tone the near ground's bottom rows turn red (red over twice green; the ground's own red
+// is under 1.5 times its green), the water's pixels (over 2.5% of the frame, measured 4%) keep
+// their colour exactly, and amount 0 paints what the scene without the key paints.
+TEST(Composite, TheUnderpaintsToneTakesTheDrySurfacesTowardsItAndLeavesTheWater) {
+    auto underpaint = [&](const std::vector<std::string>& sets) {
+        std::vector<std::string> all = {"/camera/width=192", "/camera/height=108"};
+        all.insert(all.end(), sets.begin(), sets.end());
+        const Shot shot = build_shot(
+            load_scene(test::source_dir() / "tests/golden/mortefontaine-small/scene.json", all));
+        const FrameView view = still_view(shot.scene);
+        const Camera& cam = view.camera;
+        FrameSettings settings = scene_frame_settings(shot.scene);
+        const FramePlan plan = plan_frame(shot, settings);
+        const StrokeLayer open = open_layer(cam);
+        Frame f = make_frame(cam, false);
+        paint_underpainting(shot, view, plan, settings.render, shot.sun_rays.get(), open, f, true);
+        return f;
+    };
+    const Frame plain = underpaint({"/render/underpaint_tone_amount=0"});
+    const Frame toned =
+        underpaint({"/render/underpaint_tone_amount=1", R"(/render/underpaint_tone="#c04020")"});
+    EXPECT_EQ(plain.rgba, underpaint({R"(/render/underpaint_tone="#c04020")"}).rgba);
+    const int w = plain.width, h = plain.height;
+    double r0 = 0, g0 = 0, r1 = 0, g1 = 0;
+    for (int y = h - 4; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = 4 * (static_cast<size_t>(y) * w + x);
+            r0 += plain.rgba[i], g0 += plain.rgba[i + 1];
+            r1 += toned.rgba[i], g1 += toned.rgba[i + 1];
+        }
+    EXPECT_LT(r0, 1.5 * g0) << "the ground's own colour";
+    EXPECT_GT(r1, 2 * g1) << "the tone's";
+    size_t covered = 0, same = 0;
+    for (size_t p = 0; p < plain.rgba.size(); p += 4) {
+        if (!(plain.rgba[p] + plain.rgba[p + 1] + plain.rgba[p + 2] > 0.0f)) continue;
+        ++covered;
+        same += plain.rgba[p] == toned.rgba[p] && plain.rgba[p + 1] == toned.rgba[p + 1] &&
+                plain.rgba[p + 2] == toned.rgba[p + 2];
+    }
+    EXPECT_GT(same, size_t(w) * h / 40) << covered;
+    EXPECT_LT(same * 2, covered);
 }
 
 // Strokes at least render/one_sample_px wide (the narrower half-width) take one sample a pixel,
