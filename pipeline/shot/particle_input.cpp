@@ -72,7 +72,9 @@ ParticleInput particle_input(const ParticleSource& shot, size_t item, SpriteKind
         in.normal = pl.turn(L.normal[j]);
         // A falling twig's leaves are painted down along it (shader's hanging_slope); the rest
         // take the shader's stroke_angle (sprites.cpp: no tangent).
-        if (p.hanging_slope <= 90.0f &&
+        // (Only a falling one can pass: the sine of 0-90 degrees is not negative, so the sine
+        // is taken for those alone, not for every leaf every frame.)
+        if (p.hanging_slope <= 90.0f && in.normal.y < 0.0f &&
             -in.normal.y > pmath::sin(static_cast<double>(p.hanging_slope) * M_PI / 180.0))
             in.tangent = in.normal;
         in.center_distance = L.center_distance[j];
