@@ -15,6 +15,8 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 # Seconds each fuzz target runs in `make fuzz` (CI: 20 s each of the ten, two at once).
 FUZZ_SECONDS ?= 60
+# libFuzzer's seed (0: a new one each run); CI fixes it, so its run can be repeated here.
+FUZZ_SEED ?= 0
 FUZZ_TARGETS := tree_preset shader_preset palette scene set_value studio_request particle_file graftal \
                 imposter gltf
 
@@ -114,7 +116,7 @@ test-sanitize: build-sanitize
 # minimise it (-minimize_crash=1) and commit it under tests/fuzz/regressions/TARGET/, where every
 # test run replays it.
 fuzz: build-sanitize
-	tools/ci/fuzz.sh $(abspath $(SAN_BUILD)) $(FUZZ_SECONDS) $(JOBS) $(FUZZ_TARGETS)
+	FUZZ_SEED=$(FUZZ_SEED) tools/ci/fuzz.sh $(abspath $(SAN_BUILD)) $(FUZZ_SECONDS) $(JOBS) $(FUZZ_TARGETS)
 
 # The Google Benchmark programs in $(BUILD)/tests (pleinair_bench_*) are built on request.
 bench: configure

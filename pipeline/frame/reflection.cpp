@@ -128,7 +128,11 @@ Color mirror_seen(const MirrorContext& c, const RayOrigin& at, const glm::vec3* 
 void set_mirror(const MirrorContext& c, const Color& seen, const glm::vec3& up,
                 const glm::dvec3& dir, StrokeConstants& k) {
     const float amount_max = clamp01(c.shot.scene.water.reflection);
-    const float fresnel = water_reflectance(static_cast<float>(glm::dot(dir, glm::dvec3(up))));
+    // Silvered: the reflectance taken part of the way to 1, the painter's light pond over the
+    // physicist's dark one.
+    const float silver = clamp01(c.shot.scene.water.silver);
+    const float physical = water_reflectance(static_cast<float>(glm::dot(dir, glm::dvec3(up))));
+    const float fresnel = physical + (1.0f - physical) * silver;
     const float amount = amount_max * fresnel;
     const float dim = 1.0f - kNearDarken * amount_max * (1.0f - fresnel);
     const Color grey(luminance(seen));

@@ -130,6 +130,11 @@ void visit_water(WaterDesc& w, V& v) {
            "Share of its saturation a mirrored colour keeps (its luminance kept): paint greys a "
            "reflection, so a green bank lies silver-grey in the water (BENCHMARKS.md, \"A pond "
            "that mirrors\"). 1: the colour as the ray saw it.");
+    v.real("silver", w.silver, {0, 1}, "",
+           "Share of the mirror the water keeps where Fresnel's reflectance falls towards the "
+           "viewer: the reflectance taken this share of the way to 1. Physics darkens near water "
+           "to its body's colour; Corot's ponds stay a light, silvery sheet of the sky, the "
+           "picture's second light after the sky (issue 52 section 1). 0: Fresnel alone.");
 }
 
 template <class V>

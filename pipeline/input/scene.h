@@ -127,6 +127,9 @@ struct WaterDesc {
     float ripple = 0.02f;  // how far ripples lean a stroke's mirror normal, towards a random one
     int mirror_rays = 4;   // reflected rays a water stroke averages
     float mirror_saturation = 0.6f;  // share of its saturation a mirrored colour keeps
+    // Share of the mirror kept where Fresnel's reflectance falls towards the viewer (0: Fresnel
+    // alone): a painter's pond stays a light sheet of sky (reflection.h, set_mirror).
+    float silver = 0.0f;
 };
 
 struct RockDesc {

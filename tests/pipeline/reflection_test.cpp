@@ -331,13 +331,16 @@ TEST(Reflection, AMovingCamerasMirrorIsLinearBetweenItsLatticeFrames) {
 
 // What the water does with what it mirrors (set_mirror): the colour greyed to
 // /water/mirror_saturation with its luminance kept, the water's own lightness lowered by the
-// share the mirror takes (its dark body), and nothing more where it does not mirror.
+// share the mirror takes (its dark body), and nothing more where it does not mirror. The share
+// is /water/reflection times Fresnel's reflectance taken /water/silver of the way to 1: with
+// silver 1 the water mirrors as much looking straight down as at a grazing angle.
 TEST(Reflection, AMirrorIsGreyedAndTheWaterDarkensWhereItMirrors) {
-    for (float saturation : {1.0f, 0.6f, 0.0f}) {
+    for (auto [saturation, silver] : {std::pair{1.0f, 0.0f}, {0.6f, 0.8f}, {0.0f, 1.0f}}) {
         const Shot shot = build_shot(
             load_scene(test::source_dir() / "presets" / "scenes" / "mortefontaine-walk.json",
                        {"/camera/width=160", "/camera/height=90",
-                        "/water/mirror_saturation=" + std::to_string(saturation)}));
+                        "/water/mirror_saturation=" + std::to_string(saturation),
+                        "/water/silver=" + std::to_string(silver)}));
         const FrameSettings fs = scene_frame_settings(shot.scene);
         const FrameView view = view_at(shot.scene, 0.0);
         const MirrorContext c =
@@ -349,9 +352,13 @@ TEST(Reflection, AMirrorIsGreyedAndTheWaterDarkensWhereItMirrors) {
             k.lightness = 0.8f;
             const glm::dvec3 dir = glm::normalize(glm::dvec3(1.0, -down, 0.0));
             set_mirror(c, seen, up, dir, k);
-            const float amount = shot.scene.water.reflection *
-                                 water_reflectance(float(glm::dot(dir, glm::dvec3(up))));
-            EXPECT_NEAR(k.lightness, 0.8f * (1.0f - amount), 1e-6f);
+            const float fresnel = water_reflectance(float(glm::dot(dir, glm::dvec3(up))));
+            const float amount =
+                shot.scene.water.reflection * (fresnel + (1.0f - fresnel) * silver);
+            EXPECT_NEAR(k.lightness, 0.8f * (1.0f - amount), 1e-6f) << silver << " " << down;
+            if (silver == 1.0f) {
+                EXPECT_NEAR(k.lightness, 0.8f * (1.0f - shot.scene.water.reflection), 1e-6f);
+            }
             // The mirrored colour over its share: its luminance kept, its spread scaled.
             const float lum = luminance(k.mirror), want = luminance(seen);
             const float scale = lum / want;

@@ -3,7 +3,8 @@
 
     tools/ci/slowest_tests.py [--most N] [--cost-data OUT] FILE.xml [FILE.xml ...]
 
-Each row: seconds, the file's label (its name without .xml) and the test's name. ctest writes a
+Each row: seconds, the file's label (its name without .xml) and the test's name; the tests that
+failed are listed after them, by name, so the end of CI's log says which. ctest writes a
 test's wall time as the testcase's `time` attribute; a missing or empty file is said, not fatal,
 so a CI run that failed before its tests still prints its stage table.
 
@@ -24,6 +25,7 @@ def main():
     ap.add_argument("files", nargs="+")
     args = ap.parse_args()
     rows = []
+    failed = []
     for path in args.files:
         label = os.path.splitext(os.path.basename(path))[0]
         try:
@@ -37,6 +39,8 @@ def main():
             except ValueError:
                 continue
             rows.append((seconds, label, case.get("name", "?")))
+            if case.get("status") == "fail" or case.find("failure") is not None:
+                failed.append((label, case.get("name", "?")))
     rows.sort(key=lambda r: -r[0])
     if args.cost_data:
         with open(args.cost_data, "w") as out:
@@ -48,6 +52,10 @@ def main():
     print(f"{len(rows)} tests, {total:.0f} s of test time; the {min(args.most, len(rows))} slowest:")
     for seconds, label, name in rows[: args.most]:
         print(f"  {seconds:8.1f} s  {label:<10} {name}")
+    if failed:
+        print(f"{len(failed)} failed:")
+        for label, name in failed:
+            print(f"  {label:<10} {name}")
     return 0
 
 
