@@ -2,6 +2,7 @@
 // and IV.5, where lightness picks the colour instead of scaling it.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <glm/vec3.hpp>
 #include <vector>
@@ -120,6 +121,15 @@ inline Color scale_keeping_hue(Color c, float k) {
     c = c * k;
     const float hi = std::max(c.x, std::max(c.y, c.z));
     return hi > 1.0f ? c / hi : c;
+}
+
+// A colour taken the share `amount` of the way to luminance `target`, keeping its hue (a black
+// becomes the grey of the luminance reached).
+inline Color toward_luminance(Color c, float target, float amount) {
+    const float y = luminance(c);
+    const float to = y + (target - y) * std::clamp(amount, 0.0f, 1.0f);
+    if (!(y > 1e-6f)) return Color(to);
+    return scale_keeping_hue(c, to / y);
 }
 
 inline Color clamp_value(Color c, float lo, float hi) {

@@ -257,6 +257,9 @@ struct StrokeConstants {
     // by its share: the palette's colour times mirror_keep, plus this. Black and 1: no mirror.
     Color mirror{0.0f};
     float mirror_keep = 1;
+    // The mass's value the touch is laid in at (linear luminance) and the share of the way its
+    // colour goes there, last, keeping its hue (pipeline/frame/distance_mass.h). 0: its own.
+    float key_luminance = 0, key_amount = 0;
 };
 
 // What the stroke mask's noise reads of StrokeConstants, for whoever keeps many strokes around
@@ -357,6 +360,7 @@ inline Color finish_color(const StrokeConstants& k, Color c) {
         c = limit_saturation(c, k.max_saturation);
         c = clamp_value(c, k.value_lo, k.value_hi);
     }
+    if (k.key_amount > 0.0f) c = toward_luminance(c, k.key_luminance, k.key_amount);
     return c;
 }
 

@@ -37,6 +37,8 @@ FramePlan plan_frame(const Shot& shot, const FrameSettings& settings) {
     plan.tint = tint;
     add("tint", tint,
         tint ? "a shader has unique_tint_amt > 0" : "unique_tint_amt is 0 in every shader");
+    // The distance's one value (/atmosphere/value_pull) is the haze too, whatever the shaders.
+    atmos |= scene.atmosphere.value_pull > 0;
     plan.atmosphere = scene.has_atmosphere && atmos;
     add("atmosphere", plan.atmosphere,
         !scene.has_atmosphere ? "the scene has no atmosphere"

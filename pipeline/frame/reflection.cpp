@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "pipeline/frame/background.h"
+#include "pipeline/frame/distance_mass.h"
 #include "pipeline/frame/mirror_memo.h"
 #include "pipeline/frame/sky_sprites.h"
 #include "pipeline/frame/surface_hit.h"
@@ -55,8 +56,9 @@ MirrorContext mirror_context(const Shot& shot, const FrameView& view, const Fram
             const float d = on ? distance_value(depth, scene.atmosphere.near_distance,
                                                 scene.atmosphere.far_distance, p.dist_curve_bias)
                                : 0.0f;
-            const StrokeConstants k =
+            StrokeConstants k =
                 stroke_constants(p, 0.5f, 0.5f, 0.5f, 0.5f, 0, 1.0f, d, 0.0f, false, on);
+            if (haze) lay_in_distance_value(scene.atmosphere, depth, k);
             c.foliage[static_cast<size_t>(i)] +=
                 finish_color(k, palette_lookup(f.leaf_palette, 0.3f));
         }

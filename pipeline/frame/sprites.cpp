@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "pipeline/frame/buffer_pool.h"
+#include "pipeline/frame/distance_mass.h"
 #include "pipeline/frame/group_cull.h"
 #include "pipeline/frame/seen_memo.h"
 #include "pipeline/shot/particle_input.h"
@@ -133,6 +134,7 @@ void shade_sprite(const SpriteContext& c, MaterialId mat, const SpriteInput& in,
                              in.tree_id, in.shadow, d, in.lod.lod_distance,
                              !surface && c.plan.tint && p.unique_tint_amt > 0,
                              c.plan.atmosphere && has_atmosphere_effect(p));
+    if (c.plan.atmosphere) lay_in_distance_value(a, out.depth, out.k);
     if (surface) {
         const SurfaceParticles& S = *in.surface;
         const float h = S.height(in.index);

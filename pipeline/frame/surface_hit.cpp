@@ -3,6 +3,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "pipeline/frame/distance_mass.h"
 #include "pipeline/shot/shot.h"
 
 namespace pleinair {
@@ -42,6 +43,7 @@ SurfaceHit surface_hit(const Shot& shot, const FrameView& view, const FramePlan&
                            m.shader->dist_curve_bias);
     out.k = stroke_constants(*m.shader, n_dot_l, 0.5f, 0.5f, 0.5f, 0, 1.0f, d, 0.0f, false,
                              plan.atmosphere && has_atmosphere_effect(*m.shader));
+    if (plan.atmosphere) lay_in_distance_value(scene.atmosphere, depth, out.k);
     out.base = palette_lookup(*m.palette, l);
     out.n = n;
     out.material = mat;

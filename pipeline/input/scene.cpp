@@ -533,6 +533,19 @@ void visit_scene(SceneDesc& s, V& v) {
                "View depth where the effect starts.");
         v.real("far", s.atmosphere.far_distance, {0, 1e9}, "world units",
                "View depth where it is full.");
+        v.real("value", s.atmosphere.value, {0, 100}, "L*",
+               "The distance's one value (Corot's greyish middle distance): what value_pull "
+               "takes every far touch's lightness towards, whatever its material or light.");
+        v.real("value_near", s.atmosphere.value_near, {0, 1e9}, "world units",
+               "View depth where the distance's value starts to take the touches.");
+        v.real("value_far", s.atmosphere.value_far, {0, 1e9}, "world units",
+               "View depth past which it takes them fully (by value_pull); a smooth step "
+               "between, so a touch's value moves continuously as the eye moves.");
+        v.real("value_pull", s.atmosphere.value_pull, {0, 1}, "",
+               "Share of the way a touch past value_far goes to the distance's value, keeping "
+               "its hue: 1 lays the distance in as one flat value, 0 (default) leaves each "
+               "touch's own. The values of the whole frame, squinted at, then part into a few "
+               "masses instead of a ramp from the near dark to the sky.");
     });
     v.object("terrain", "The ground: hills and noise, painted as strokes (IV.7); absent: none",
              [&] {
@@ -1570,6 +1583,10 @@ SceneDesc parse_scene(const std::string& text, const std::string& source,
         problems.push_back(
             {"/atmosphere/far", "must be >= near (" + format_number(s.atmosphere.near_distance) +
                                     "), got " + format_number(s.atmosphere.far_distance)});
+    if (s.has_atmosphere && s.atmosphere.value_far < s.atmosphere.value_near)
+        problems.push_back({"/atmosphere/value_far",
+                            "must be >= value_near (" + format_number(s.atmosphere.value_near) +
+                                "), got " + format_number(s.atmosphere.value_far)});
     if (s.render.samples != 1 && s.render.samples != 4 && s.render.samples != 16)
         problems.push_back(
             {"/render/samples", "must be 1, 4 or 16, got " + std::to_string(s.render.samples)});

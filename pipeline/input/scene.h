@@ -57,6 +57,12 @@ struct SkyDesc {
 struct Atmosphere {
     float near_distance = 10;
     float far_distance = 200;
+    // The distance laid in as one value (issue 52 section 1): every touch's luminance is taken
+    // towards L* `value`, by value_pull times smoothstep(value_near, value_far) of its depth, so
+    // the far bank, the far shore and the far water read as one mass. value_pull 0: none.
+    float value = 60;
+    float value_near = 0, value_far = 0;
+    float value_pull = 0;
 };
 
 // A named look for surface strokes (grass, dirt, rock, water): a stroke shader with IV.7's
