@@ -44,6 +44,9 @@ FramePlan plan_frame(const Shot& shot, const FrameSettings& settings) {
         !scene.has_atmosphere ? "the scene has no atmosphere"
         : atmos               ? "atmosphere near/far set and a shader has distance effects"
                               : "every shader's distance effects are zero");
+    add("cloud shadows", scene.clouds.cover > 0,
+        scene.clouds.cover > 0 ? "sun/clouds/cover > 0: patches of light and shade on the land"
+                               : "the scene's sun has no clouds");
     plan.sub_stroke = sub;
     add("sub-stroke colour", sub,
         sub ? "a shader has sub_stroke_amt > 0" : "sub_stroke_amt is 0 in every shader");

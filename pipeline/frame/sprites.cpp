@@ -424,6 +424,9 @@ struct ItemSprites {
             ++counters.shadow_rays.local(),
                 in.shadow = sun_light_at(*input.sun_rays, origin, c.sun, c.rs.shadows);
         in.shadow += (1.0f - in.shadow) * in.lod.shadow_lift;
+        // The clouds' shadows after the level of detail's lift: they are the land's large
+        // patches of light and shade, which stay however far off, not a detail that fades.
+        in.shadow *= cloud_light(shot.scene.clouds, origin.world.x, origin.world.z);
         shade_sprite(c, mat, in, sp);
         if (plan.fragment_shadows) {
             sp.grid = static_cast<int32_t>(out.grids.size());

@@ -31,10 +31,10 @@ SurfaceHit surface_hit(const Shot& shot, const FrameView& view, const FramePlan&
     float l = m.surface ? surface_lightness(*m.surface, n_dot_l, 0.5f) : clamp01(n_dot_l);
     l *= 0.9f;
     float sh = 1.0f;
-    if (plan.shadows && sun_rays) {
+    if (plan.shadows && sun_rays)
         sh = sun_light_at(*sun_rays, RayOrigin{world, n, true, 0.01f}, sun, rs.shadows);
-        if (sh < 1.0f) l *= shadow_remap(sh, m.shader->shadow_bias);
-    }
+    sh *= cloud_light(scene.clouds, world.x, world.z);
+    if (sh < 1.0f) l *= shadow_remap(sh, m.shader->shadow_bias);
     const Camera& cam = view.camera;
     if (depth < 0.0f) depth = static_cast<float>(glm::dot(world - cam.eye, cam.forward));
     float d = 0;

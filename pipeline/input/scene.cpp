@@ -481,6 +481,24 @@ void visit_scene(SceneDesc& s, V& v) {
         v.boolean("casts_shadows", s.sun_casts_shadows,
                   "Trace shadow rays: trunks, terrain, rocks and the leaf strokes themselves "
                   "cast shadows as brush strokes (IV.4.2). Off: no shadow geometry is built.");
+        v.object("clouds",
+                 "The shadows of clouds on the land: large patches of light and shade over the "
+                 "ground, the trees and the water, standing still over a shot as a painter fixes "
+                 "the light on a meadow (issue 52 section 3). Needs no shadow rays; absent: none",
+                 [&] {
+                     CloudShadowParams& c = s.clouds;
+                     v.real("cover", c.cover, {0, 1}, "",
+                            "Share of the land in a cloud's shadow; 0: none.");
+                     v.real("size", c.size, {1, 1e5}, "world units",
+                            "A patch of light or shade's typical width.");
+                     v.real("softness", c.softness, {0.001, 1}, "",
+                            "Share of the land in a shadow's fading edge: 0.02 a sharp edge, "
+                            "0.3 a long penumbra.");
+                     v.real("light", c.light, {0, 1}, "",
+                            "The sun's light left deep in a shadow, as a cast shadow's: the "
+                            "shader's shadow remap keeps it from black.");
+                     v.seed("seed", c.seed, "Draws where the patches fall.");
+                 });
     });
     v.object("wind",
              "Wind that bends the trees frame by frame, a pure function of time (absent: still "

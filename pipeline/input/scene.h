@@ -19,6 +19,7 @@
 #include "pipeline/input/graftal_desc.h"
 #include "pipeline/input/particle_files.h"
 #include "pipeline/input/settings.h"
+#include "shading/cloud_shadow.h"
 #include "shading/color.h"
 #include "shading/sky.h"
 #include "shading/stroke_shader.h"
@@ -240,6 +241,7 @@ struct SceneDesc {
     glm::dvec3 sun_direction{-0.5, 0.8, 0.4};  // towards the sun, unit
     std::vector<SunKey> sun_track;             // empty: the sun stays at sun_direction
     bool sun_casts_shadows = false;
+    CloudShadowParams clouds;  // the clouds' shadows on the land (/sun/clouds)
     WindDesc wind;  // absent (present false): still air
     Background background;
     SkyDesc sky;

@@ -193,12 +193,19 @@ TEST(Paint, PlanSkipsWhatTheSceneDoesNotNeed) {
     EXPECT_FALSE(plan.bark);
     int skipped = 0;
     for (const auto& d : plan.decisions) skipped += !d.ran;
-    // bark, tint, atmosphere, aovs, shadows, underpaint, occlusion maps, level of detail,
-    // graftals, imposters, sky, reflections, pigment mixing, canvas, wind
-    EXPECT_EQ(skipped, 15);
+    // bark, tint, atmosphere, cloud shadows, aovs, shadows, underpaint, occlusion maps, level of
+    // detail, graftals, imposters, sky, reflections, pigment mixing, canvas, wind
+    EXPECT_EQ(skipped, 16);
     EXPECT_FALSE(plan.occlusion_maps);
     EXPECT_FALSE(plan.wind);
     EXPECT_FALSE(plan.imposters);
+    // Clouds' shadows only where the sun has clouds.
+    s.clouds.cover = 0.5f;
+    plan = plan_of(s);
+    skipped = 0;
+    for (const auto& d : plan.decisions) skipped += !d.ran;
+    EXPECT_EQ(skipped, 15);
+    s.clouds.cover = 0.0f;
     // With no tint and no atmosphere the picture changes (they did something before).
     SceneDesc full = parse_scene(scene_text(kCamera, kTrees), "test");
     EXPECT_NE(frame_srgb8(paint(full)), frame_srgb8(paint(s)));
