@@ -4,6 +4,7 @@
 // --save writes the frame it measured.
 #include <cstdio>
 
+#include "pipeline/bench/contact_look.h"
 #include "pipeline/bench/crown_look.h"
 #include "pipeline/bench/edge_look.h"
 #include "pipeline/bench/grain_look.h"
@@ -53,9 +54,10 @@ void print_crowns_and_palette(const std::string& name, const Shot& shot, const F
 
 // The third table: the near ground's brush (issue 27 §4): its texture at the two scales, the
 // share of it left smooth (kSmoothSpread), the inside of soft blobs, and its grain (issue 52
-// §3, grain_look.h): touches laid along the land against round spots.
+// §3, grain_look.h): touches laid along the land against round spots; and whether the trees
+// stand in it (§3 and §7, contact_look.h): the ground darker beside each trunk's foot.
 void print_foreground(const std::string& name, const Frame& f, const std::vector<float>& l,
-                      const std::vector<uint8_t>& near) {
+                      const std::vector<uint8_t>& near, const ContactLook& feet) {
     uint64_t px = 0;
     for (uint8_t v : near) px += v;
     const double t5 = brush_texture(l, f.width, f.height, near, 2);
@@ -65,11 +67,14 @@ void print_foreground(const std::string& name, const Frame& f, const std::vector
     std::printf(
         "\n| scene | near ground (within %.0f m): pixels | L* texture 5 px / 17 px | smooth "
         "share (5 px windows under %.1f L*) | grain: edges within %.0f deg of horizontal "
-        "(round spots 0.33) / coherence (angle) |\n|---|---:|---:|---:|---:|\n",
-        kNearGround, kSmoothSpread, kGrainTolerance);
-    std::printf("| %s | %llu | %.2f / %.2f | %.3f | %.2f / %.2f (%.0f) |\n", name.c_str(),
-                static_cast<unsigned long long>(px), t5, t17, smooth, grain.horizontal,
-                grain.coherence, grain.angle);
+        "(round spots 0.33) / coherence (angle) | trees' feet: measured / ground beside the "
+        "trunk darker by, median L* / standing (%.0f L* or more) "
+        "|\n|---|---:|---:|---:|---:|---:|\n",
+        kNearGround, kSmoothSpread, kGrainTolerance, kContactStanding);
+    std::printf("| %s | %llu | %.2f / %.2f | %.3f | %.2f / %.2f (%.0f) | %d / %.1f / %.2f |\n",
+                name.c_str(), static_cast<unsigned long long>(px), t5, t17, smooth,
+                grain.horizontal, grain.coherence, grain.angle, feet.bases, feet.median_drop,
+                feet.standing_share);
 }
 
 // The fourth table: the picture's plan (issue 52 §7): whether the open sky repeats a motif, the
@@ -149,7 +154,9 @@ int run_bench_look(const BenchCommand& cmd) {
         static_cast<unsigned long long>(glass.pairs), glass.lightness, glass.chroma, ms);
     (void)tree_px;
     print_crowns_and_palette(cmd.scene + sets, shot, view, f, r.sky);
-    print_foreground(cmd.scene + sets, f, l, r.near_ground);
+    print_foreground(
+        cmd.scene + sets, f, l, r.near_ground,
+        contact_look(l, f.width, f.height, f.object_id, r.sky, tree_bases(shot, view, f)));
     print_plan(cmd.scene + sets, f, l, r.sky, r.trees);
     return 0;
 }

@@ -1,13 +1,15 @@
 // The plan's measures (pipeline/bench/mass_look.h) on images whose answer is known: a tiled
 // motif repeats and a 1/f texture does not; three flat masses are three values, a gradient one;
 // crisp touches have crisp edges and blurred ones blurred edges (pipeline/bench/edge_look.h); a
-// field of horizontal touches runs horizontal, round spots no way (pipeline/bench/grain_look.h).
+// field of horizontal touches runs horizontal, round spots no way (pipeline/bench/grain_look.h);
+// a trunk in a pool of shade stands, one on bare ground floats (pipeline/bench/contact_look.h).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <random>
 
+#include "pipeline/bench/contact_look.h"
 #include "pipeline/bench/edge_look.h"
 #include "pipeline/bench/grain_look.h"
 #include "pipeline/bench/mass_look.h"
@@ -283,6 +285,45 @@ TEST(GrainLook, OnlyTheMaskCounts) {
     const GrainLook empty = grain_look(l, kW, kH, none);
     EXPECT_EQ(empty.pixels, 0u);
     EXPECT_EQ(empty.horizontal, 0.0);
+}
+
+// Three trunks on a textured meadow (L* 55 +- 4), 20 px a metre: one standing in a pool of
+// shade 2 m to either side (L* 38), one on nothing, one on a light seam. The trunks' own pixels
+// (dark, their object id) lie over the foot and do not count as ground; the sky above does not
+// either.
+TEST(ContactLook, ATrunkInItsShadeStandsOneOnNothingFloats) {
+    std::vector<float> l = value_noise(6, 4), id(static_cast<size_t>(kW) * kH, 0.0f);
+    std::vector<uint8_t> sky(l.size(), 0);
+    for (float& v : l) v = 55.0f + 4.0f * v;
+    const float m = 20.0f;
+    const std::vector<TreeBase> feet = {{200, 400, m, 1}, {480, 400, m, 2}, {760, 400, m, 3}};
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            const size_t i = static_cast<size_t>(y) * kW + x;
+            sky[i] = y < 300;
+            for (const TreeBase& t : feet) {
+                const float dx = std::abs(x - t.x), dy = std::abs(y - t.y);
+                if (t.object_id == 1 && dx < 2.0f * m && dy < 0.5f * m) l[i] = 38.0f;
+                if (t.object_id == 3 && dx < 2.0f * m && dy < 0.5f * m) l[i] = 70.0f;
+                if (dx < 0.8f * m && y < t.y + 2) l[i] = 15.0f, id[i] = t.object_id;  // the trunk
+            }
+        }
+    auto one = [&](size_t k) { return contact_look(l, kW, kH, id, sky, {feet[k]}); };
+    const ContactLook stands = one(0), floats = one(1), seam = one(2);
+    EXPECT_EQ(stands.bases, 1);
+    EXPECT_NEAR(stands.median_drop, 17.0, 2.0);
+    EXPECT_EQ(stands.standing_share, 1.0);
+    EXPECT_NEAR(floats.median_drop, 0.0, 1.5);
+    EXPECT_EQ(floats.standing_share, 0.0);
+    EXPECT_NEAR(seam.median_drop, -15.0, 2.0);
+    const ContactLook all = contact_look(l, kW, kH, id, sky, feet);
+    EXPECT_EQ(all.bases, 3);
+    EXPECT_NEAR(all.median_drop, floats.median_drop, 1e-9);
+    EXPECT_NEAR(all.standing_share, 1.0 / 3.0, 1e-9);
+    // A foot off the frame, or with no ground about it (all sky), is not measured.
+    std::vector<uint8_t> all_sky(l.size(), 1);
+    EXPECT_EQ(contact_look(l, kW, kH, id, all_sky, feet).bases, 0);
+    EXPECT_EQ(contact_look(l, kW, kH, id, sky, {{5000, 400, m, 9}}).bases, 0);
 }
 
 }  // namespace
